@@ -1,0 +1,66 @@
+#include "bench/experiments/driver_options.hpp"
+
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+namespace svmp::experiments {
+namespace {
+
+long parseLong(const std::string& flag, const std::string& value, long min, long max) {
+  char* end = nullptr;
+  const long v = std::strtol(value.c_str(), &end, 10);
+  if (value.empty() || *end != '\0' || v < min || v > max)
+    throw std::invalid_argument("flag " + flag + ": expected an integer in [" + std::to_string(min) +
+                                ", " + std::to_string(max) + "], got '" + value + "'");
+  return v;
+}
+
+}  // namespace
+
+const char* driverUsage() {
+  return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
+         "                 [--json FILE] [--svg DIR] [--set PLANNER.KEY=VALUE ...] [--check]\n"
+         "  --planners  comma-separated: svmp, prm, local, ompl-prm, ompl-lazyprm, ompl-rrtconnect\n"
+         "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
+         "  --check     print the scenario's summary and the status of start and goal, then exit\n";
+}
+
+DriverOptions parseDriverOptions(int argc, const char* const* argv) {
+  DriverOptions o;
+  bool planners_given = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument("flag " + flag + ": missing value");
+      return argv[++i];
+    };
+    if (flag == "--scenario") o.scenario = value();
+    else if (flag == "--planners") {
+      o.planners.clear();
+      std::stringstream list(value());
+      for (std::string name; std::getline(list, name, ',');)
+        if (!name.empty()) o.planners.push_back(name);
+      if (o.planners.empty()) throw std::invalid_argument("flag --planners: empty list");
+      planners_given = true;
+    } else if (flag == "--runs") o.runs = static_cast<int>(parseLong(flag, value(), 1, 100000));
+    else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, 1L << 62));
+    else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, 1024));
+    else if (flag == "--json") o.json_path = value();
+    else if (flag == "--svg") o.svg_dir = value();
+    else if (flag == "--set") {
+      const std::string kv = value();
+      const size_t eq = kv.find('='), dot = kv.find('.');
+      if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || eq == dot + 1)
+        throw std::invalid_argument("flag --set: expected PLANNER.KEY=VALUE, got '" + kv + "'");
+      o.overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    } else if (flag == "--check") o.check = true;
+    else if (flag == "--help" || flag == "-h") o.help = true;
+    else throw std::invalid_argument("unknown flag '" + flag + "'");
+  }
+  (void)planners_given;
+  if (!o.help && o.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
+  return o;
+}
+
+}  // namespace svmp::experiments

@@ -1,0 +1,26 @@
+#pragma once
+// Command line of svmp-plan (DESIGN.md, "The experiment driver").
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace svmp::experiments {
+
+struct DriverOptions {
+  std::string scenario;
+  std::vector<std::string> planners = {"svmp", "prm"};
+  int runs = 1;
+  unsigned long seed = 1;
+  int threads = 1;
+  std::string json_path;
+  std::string svg_dir;
+  std::vector<std::pair<std::string, std::string>> overrides;  // ("svmp.sigma", "0.3")
+  bool check = false;
+  bool help = false;
+};
+
+// Throws std::invalid_argument naming the flag and the value.
+DriverOptions parseDriverOptions(int argc, const char* const* argv);
+const char* driverUsage();
+
+}  // namespace svmp::experiments

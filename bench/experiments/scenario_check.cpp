@@ -1,0 +1,77 @@
+#include "bench/experiments/scenario_check.hpp"
+
+#include <iomanip>
+
+#include "cspace/collision_checker.hpp"
+#include "cspace/motion_validator.hpp"
+
+namespace svmp::experiments {
+namespace {
+
+std::string hitName(const cspace::Environment& env, int hit) {
+  if (hit == cspace::kFree) return "free";
+  if (hit == cspace::kJointLimitHit) return "outside joint limits";
+  if (hit == cspace::kSelfCollisionHit) return "self-collision";
+  return "in collision with '" + env.byId(hit).name + "'";
+}
+
+std::string format(const Eigen::VectorXd& q) {
+  std::ostringstream s;
+  s << std::setprecision(4) << "[";
+  for (int i = 0; i < q.size(); ++i) s << (i ? ", " : "") << q[i];
+  return s.str() + "]";
+}
+
+}  // namespace
+
+bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
+  const auto& robot = *scenario.robot;
+  const auto& env = *scenario.environment;
+  cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
+  const cspace::ConfigurationSpace space = scenario.makeSpace();
+  out << "scenario   " << scenario.name << " (" << scenario.path << ")\n";
+  if (!scenario.description.empty()) out << "           " << scenario.description << "\n";
+  out << "robot      " << robot.name() << ", dof " << robot.dof() << ", " << robot.numLinks()
+      << " links, " << robot.numControlPoints() << " control points, "
+      << checker.selfCollisionPairs().size() << " self-collision pairs\n";
+  out << "limits     lower " << format(robot.lowerLimits()) << "\n           upper "
+      << format(robot.upperLimits()) << "\n";
+  out << "metric     weights " << format(scenario.metric_weights) << ", resolution "
+      << scenario.resolution << "\n";
+  out << "obstacles  " << env.size() << " (" << env.numReal() << " real)\n";
+  for (const auto& o : env.obstacles()) {
+    out << "  " << std::setw(2) << o.id << " " << std::left << std::setw(16) << o.name << std::right
+        << " " << robots::shapeKindName(o.shape.kind) << " dims " << format(o.shape.dims) << " at "
+        << format(o.shape.pose.translation()) << (o.is_virtual ? " virtual" : "")
+        << (o.weight != 1.0 ? " weight " + std::to_string(o.weight) : "") << "\n";
+  }
+  bool ok = true;
+  cspace::MotionValidator fine(checker, space, scenario.resolution / 4);
+  for (size_t i = 0; i < scenario.queries.size(); ++i) {
+    const auto& q = scenario.queries[i];
+    for (const auto& [label, config] : {std::pair{"start", &q.start}, std::pair{"goal ", &q.goal}}) {
+      const int hit = checker.check(*config);
+      ok &= hit == cspace::kFree;
+      out << "query " << i << "    " << label << " " << format(*config) << "  " << hitName(env, hit);
+      if (hit == cspace::kFree) out << ", clearance " << std::setprecision(4) << checker.clearance(*config);
+      out << "\n";
+    }
+    if (q.witness.empty()) continue;
+    std::vector<Eigen::VectorXd> path = {q.start};
+    path.insert(path.end(), q.witness.begin(), q.witness.end());
+    path.push_back(q.goal);
+    bool witness_ok = true;
+    double min_clearance = 1e300;
+    for (size_t k = 0; k + 1 < path.size(); ++k) {
+      witness_ok &= checker.isValid(path[k + 1]) && fine.isValid(path[k], path[k + 1]);
+      min_clearance = std::min(min_clearance, checker.clearance(path[k + 1]));
+    }
+    ok &= witness_ok;
+    out << "query " << i << "    witness path of " << path.size() - 1 << " segments "
+        << (witness_ok ? "is collision-free" : "COLLIDES") << " at resolution/4"
+        << ", waypoint clearance >= " << min_clearance << "\n";
+  }
+  return ok;
+}
+
+}  // namespace svmp::experiments

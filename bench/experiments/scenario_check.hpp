@@ -1,0 +1,13 @@
+#pragma once
+// `svmp-plan --check`: a scenario's summary (robot, dof, obstacles, each query's start and goal with
+// their collision status and clearance, and the witness path when the file gives one).
+#include <ostream>
+
+#include "cspace/scenario.hpp"
+
+namespace svmp::experiments {
+
+// Prints the summary; returns false when a start, goal or witness segment is in collision.
+bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out);
+
+}  // namespace svmp::experiments

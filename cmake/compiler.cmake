@@ -1,0 +1,11 @@
+# Compiler settings shared by every target (added through svmp_settings).
+add_library(svmp_settings INTERFACE)
+target_include_directories(svmp_settings INTERFACE ${PROJECT_SOURCE_DIR})
+target_compile_options(svmp_settings INTERFACE -Wall -Wextra -Wpedantic -Wno-unused-parameter)
+if(SVMP_NATIVE)
+  target_compile_options(svmp_settings INTERFACE -march=native)
+endif()
+if(SVMP_SANITIZE)
+  target_compile_options(svmp_settings INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer)
+  target_link_options(svmp_settings INTERFACE -fsanitize=address,undefined)
+endif()

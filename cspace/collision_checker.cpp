@@ -1,0 +1,214 @@
+#include "cspace/collision_checker.hpp"
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <limits>
+#include <random>
+#include <unordered_map>
+
+namespace svmp::cspace {
+namespace {
+
+// Above this many obstacles the broadphase tree beats testing AABBs one by one.
+constexpr size_t kBroadphaseThreshold = 8;
+
+std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const robots::Shape& s) {
+  switch (s.kind) {
+    case robots::ShapeKind::kBox: return std::make_shared<fcl::Boxd>(s.dims.x(), s.dims.y(), s.dims.z());
+    case robots::ShapeKind::kSphere: return std::make_shared<fcl::Sphered>(s.dims.x());
+    case robots::ShapeKind::kCylinder: return std::make_shared<fcl::Cylinderd>(s.dims.x(), s.dims.y());
+    case robots::ShapeKind::kCapsule: return std::make_shared<fcl::Capsuled>(s.dims.x(), s.dims.y());
+  }
+  throw std::logic_error("unknown shape kind");
+}
+
+std::atomic<std::uint64_t> next_instance_id{1};
+
+}  // namespace
+
+struct CollisionChecker::Workspace {
+  robots::Poses poses;
+  // links[i] holds link i's shapes; shape_offsets[i] their poses in the link frame.
+  std::vector<std::vector<std::unique_ptr<fcl::CollisionObjectd>>> links;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> obstacles;  // index = id - 1
+  std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager;  // all obstacles, when many
+};
+
+CollisionChecker::CollisionChecker(std::shared_ptr<const robots::Robot> robot,
+                                   std::shared_ptr<const Environment> env, bool self_collision)
+    : robot_(std::move(robot)), env_(std::move(env)), instance_id_(next_instance_id++) {
+  if (!robot_ || !env_) throw std::invalid_argument("collision checker: robot and environment required");
+  if (!self_collision) return;
+  // Drop pairs that touch in every sampled configuration: they are joined by construction.
+  auto candidates = robot_->nonAdjacentLinkPairs();
+  std::vector<int> touching(candidates.size(), 0);
+  std::mt19937_64 rng(12345);
+  constexpr int kSamples = 100;
+  Workspace& ws = workspace();
+  Eigen::VectorXd q(robot_->dof());
+  for (int s = 0; s < kSamples; ++s) {
+    for (int i = 0; i < q.size(); ++i)
+      q[i] = std::uniform_real_distribution<double>(robot_->lowerLimits()[i],
+                                                    robot_->upperLimits()[i])(rng);
+    placeRobot(ws, q);
+    for (size_t p = 0; p < candidates.size(); ++p)
+      touching[p] += linksCollide(ws, candidates[p].first, candidates[p].second);
+  }
+  for (size_t p = 0; p < candidates.size(); ++p)
+    if (touching[p] < kSamples) self_pairs_.push_back(candidates[p]);
+}
+
+CollisionChecker::~CollisionChecker() = default;
+
+std::unique_ptr<CollisionChecker::Workspace> CollisionChecker::makeWorkspace() const {
+  auto ws = std::make_unique<Workspace>();
+  ws->links.resize(robot_->numLinks());
+  for (int i = 0; i < robot_->numLinks(); ++i)
+    for (const auto& shape : robot_->linkShapes(i))
+      ws->links[i].push_back(std::make_unique<fcl::CollisionObjectd>(makeGeometry(shape)));
+  for (const auto& o : env_->obstacles()) {
+    auto obj = std::make_unique<fcl::CollisionObjectd>(makeGeometry(o.shape), o.shape.pose.linear(),
+                                                       o.shape.pose.translation());
+    obj->computeAABB();
+    obj->setUserData(reinterpret_cast<void*>(static_cast<intptr_t>(o.id)));
+    ws->obstacles.push_back(std::move(obj));
+  }
+  if (ws->obstacles.size() > kBroadphaseThreshold) {
+    ws->manager = std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
+    for (auto& obj : ws->obstacles) ws->manager->registerObject(obj.get());
+    ws->manager->setup();
+  }
+  return ws;
+}
+
+CollisionChecker::Workspace& CollisionChecker::workspace() const {
+  // Per-thread cache keyed by this checker's unique id (never reused, so no dangling hits).
+  thread_local std::unordered_map<std::uint64_t, Workspace*> cache;
+  auto it = cache.find(instance_id_);
+  if (it != cache.end()) return *it->second;
+  auto ws = makeWorkspace();
+  Workspace* raw = ws.get();
+  {
+    std::lock_guard<std::mutex> lock(workspaces_mutex_);
+    workspaces_.push_back(std::move(ws));
+  }
+  cache.emplace(instance_id_, raw);
+  return *raw;
+}
+
+void CollisionChecker::placeRobot(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  robot_->linkPoses(q, ws.poses);
+  for (int i = 0; i < robot_->numLinks(); ++i) {
+    const auto& shapes = robot_->linkShapes(i);
+    for (size_t k = 0; k < shapes.size(); ++k) {
+      const Eigen::Isometry3d world = ws.poses[i] * shapes[k].pose;
+      ws.links[i][k]->setTransform(world.linear(), world.translation());
+      ws.links[i][k]->computeAABB();
+    }
+  }
+}
+
+bool CollisionChecker::linksCollide(Workspace& ws, int a, int b) const {
+  fcl::CollisionRequestd request;
+  for (auto& oa : ws.links[a])
+    for (auto& ob : ws.links[b]) {
+      if (!oa->getAABB().overlap(ob->getAABB())) continue;
+      fcl::CollisionResultd result;
+      if (fcl::collide(oa.get(), ob.get(), request, result) > 0) return true;
+    }
+  return false;
+}
+
+namespace {
+
+struct BroadphaseQuery {
+  bool include_virtual;
+  const Environment* env;
+  int lowest = std::numeric_limits<int>::max();
+};
+
+bool lowestHitCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
+  auto* query = static_cast<BroadphaseQuery*>(data);
+  // One of the two is the obstacle; link objects carry no user data.
+  const int id = static_cast<int>(reinterpret_cast<intptr_t>(a->getUserData() ? a->getUserData()
+                                                                               : b->getUserData()));
+  if (id >= query->lowest) return false;
+  if (!query->include_virtual && query->env->byId(id).is_virtual) return false;
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  if (fcl::collide(a, b, request, result) > 0) query->lowest = id;
+  return false;  // keep going: the lowest id wins
+}
+
+}  // namespace
+
+int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const {
+  checks_.fetch_add(1, std::memory_order_relaxed);
+  if (!robot_->withinLimits(q)) return kJointLimitHit;
+  Workspace& ws = workspace();
+  placeRobot(ws, q);
+  int lowest = std::numeric_limits<int>::max();
+  fcl::CollisionRequestd request;
+  for (auto& link : ws.links) {
+    for (auto& part : link) {
+      if (ws.manager) {
+        BroadphaseQuery query{include_virtual, env_.get(), lowest};
+        ws.manager->collide(part.get(), &query, lowestHitCallback);
+        lowest = query.lowest;
+        continue;
+      }
+      for (const auto& o : env_->obstacles()) {
+        if (o.id >= lowest) break;
+        if (o.is_virtual && !include_virtual) continue;
+        auto& obj = ws.obstacles[o.id - 1];
+        if (!part->getAABB().overlap(obj->getAABB())) continue;
+        fcl::CollisionResultd result;
+        if (fcl::collide(part.get(), obj.get(), request, result) > 0) lowest = o.id;
+      }
+    }
+  }
+  if (lowest != std::numeric_limits<int>::max()) return lowest;
+  for (const auto& [a, b] : self_pairs_)
+    if (linksCollide(ws, a, b)) return kSelfCollisionHit;
+  return kFree;
+}
+
+bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const {
+  checks_.fetch_add(1, std::memory_order_relaxed);
+  if (!robot_->withinLimits(q)) return false;
+  Workspace& ws = workspace();
+  placeRobot(ws, q);
+  auto& obj = ws.obstacles.at(id - 1);
+  fcl::CollisionRequestd request;
+  for (auto& link : ws.links)
+    for (auto& part : link) {
+      if (!part->getAABB().overlap(obj->getAABB())) continue;
+      fcl::CollisionResultd result;
+      if (fcl::collide(part.get(), obj.get(), request, result) > 0) return true;
+    }
+  return false;
+}
+
+double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  Workspace& ws = workspace();
+  placeRobot(ws, q);
+  double best = std::numeric_limits<double>::infinity();
+  fcl::DistanceRequestd request;
+  for (auto& link : ws.links)
+    for (auto& part : link)
+      for (const auto& o : env_->obstacles()) {
+        if (o.is_virtual) continue;
+        fcl::DistanceResultd result;
+        const double d = fcl::distance(part.get(), ws.obstacles[o.id - 1].get(), request, result);
+        best = std::min(best, std::max(0.0, d));
+      }
+  return best;
+}
+
+}  // namespace svmp::cspace

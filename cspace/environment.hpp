@@ -1,0 +1,40 @@
+#pragma once
+// The workspace: obstacles as FCL primitives with a world pose, an id (>= 1; the collision checker
+// returns it), an optional `virtual` flag for guide obstacles that may be touched (thesis ch. 2.3) and
+// a class weight that scales the SVM penalty C of that obstacle's samples (thesis ch. 4.1.2).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "robots/shape.hpp"
+
+namespace svmp::cspace {
+
+struct Obstacle {
+  int id = 0;
+  std::string name;
+  robots::Shape shape;  // pose in the world frame
+  bool is_virtual = false;
+  double weight = 1.0;
+  // A configuration in collision with this obstacle, to root its sampling tree (thesis Algorithm 1);
+  // found automatically when absent.
+  std::optional<Eigen::VectorXd> root_sample;
+};
+
+class Environment {
+ public:
+  Environment() = default;
+  // Ids are assigned 1, 2, ... in order. Throws std::invalid_argument on an invalid shape or weight.
+  explicit Environment(std::vector<Obstacle> obstacles);
+
+  const std::vector<Obstacle>& obstacles() const { return obstacles_; }
+  int size() const { return static_cast<int>(obstacles_.size()); }
+  // Obstacle with that id; throws std::out_of_range when there is none.
+  const Obstacle& byId(int id) const;
+  int numReal() const;
+
+ private:
+  std::vector<Obstacle> obstacles_;
+};
+
+}  // namespace svmp::cspace

@@ -1,0 +1,71 @@
+#include "cspace/parameters.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace svmp::cspace {
+
+std::string ParameterSet::field(const std::string& key) const {
+  return source_ + ": field '" + prefix_ + key + "'";
+}
+
+double ParameterSet::getDouble(const std::string& key, double fallback, double min, double max) const {
+  used_.insert(key);
+  auto it = values_.find(key);
+  if (it == values_.end()) return fallback;
+  char* end = nullptr;
+  const double v = std::strtod(it->second.c_str(), &end);
+  if (it->second.empty() || *end != '\0' || !std::isfinite(v))
+    throw ScenarioError(field(key) + ": expected a finite number, got '" + it->second + "'");
+  if (v < min || v > max) {
+    std::ostringstream err;
+    err << field(key) << ": must lie in [" << min << ", " << max << "], got " << it->second;
+    throw ScenarioError(err.str());
+  }
+  return v;
+}
+
+long ParameterSet::getInt(const std::string& key, long fallback, long min, long max) const {
+  used_.insert(key);
+  auto it = values_.find(key);
+  if (it == values_.end()) return fallback;
+  char* end = nullptr;
+  const long v = std::strtol(it->second.c_str(), &end, 10);
+  if (it->second.empty() || *end != '\0')
+    throw ScenarioError(field(key) + ": expected an integer, got '" + it->second + "'");
+  if (v < min || v > max)
+    throw ScenarioError(field(key) + ": must lie in [" + std::to_string(min) + ", " +
+                        std::to_string(max) + "], got " + it->second);
+  return v;
+}
+
+bool ParameterSet::getBool(const std::string& key, bool fallback) const {
+  used_.insert(key);
+  auto it = values_.find(key);
+  if (it == values_.end()) return fallback;
+  if (it->second == "true" || it->second == "1") return true;
+  if (it->second == "false" || it->second == "0") return false;
+  throw ScenarioError(field(key) + ": expected true or false, got '" + it->second + "'");
+}
+
+std::string ParameterSet::getString(const std::string& key, const std::string& fallback,
+                                    const std::set<std::string>& allowed) const {
+  used_.insert(key);
+  auto it = values_.find(key);
+  if (it == values_.end()) return fallback;
+  if (!allowed.empty() && !allowed.count(it->second)) {
+    std::string options;
+    for (const auto& a : allowed) options += (options.empty() ? "" : ", ") + a;
+    throw ScenarioError(field(key) + ": expected one of " + options + ", got '" + it->second + "'");
+  }
+  return it->second;
+}
+
+void ParameterSet::requireAllUsed() const {
+  for (const auto& [key, value] : values_)
+    if (!used_.count(key))
+      throw ScenarioError(field(key) + ": unknown parameter (value '" + value + "')");
+}
+
+}  // namespace svmp::cspace

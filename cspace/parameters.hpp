@@ -1,0 +1,44 @@
+#pragma once
+// Planner parameters as given in a scenario file (`planners: {svmp: {sigma: 0.3}}`) and overridden per run
+// (`--set svmp.sigma=0.25`). Values stay text until a planner reads them with its own bounds, so every
+// error names the source, the field and the value; keys no planner reads are reported as typos.
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace svmp::cspace {
+
+// Bad input in a scenario file or on the command line; what() names file, field and value.
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ParameterSet {
+ public:
+  ParameterSet() = default;
+  ParameterSet(std::string source, std::string prefix, std::map<std::string, std::string> values)
+      : source_(std::move(source)), prefix_(std::move(prefix)), values_(std::move(values)) {}
+
+  void set(const std::string& key, const std::string& value) { values_[key] = value; }
+  bool has(const std::string& key) const { return values_.count(key) > 0; }
+  // Each getter returns the fallback when the key is absent and throws ScenarioError when the value
+  // does not parse or lies outside [min, max].
+  double getDouble(const std::string& key, double fallback, double min = -1e300, double max = 1e300) const;
+  long getInt(const std::string& key, long fallback, long min = -(1L << 62), long max = 1L << 62) const;
+  bool getBool(const std::string& key, bool fallback) const;
+  std::string getString(const std::string& key, const std::string& fallback,
+                        const std::set<std::string>& allowed = {}) const;
+  // Throws ScenarioError naming keys that were set but never read.
+  void requireAllUsed() const;
+  const std::map<std::string, std::string>& values() const { return values_; }
+
+ private:
+  std::string field(const std::string& key) const;
+  std::string source_, prefix_;
+  std::map<std::string, std::string> values_;
+  mutable std::set<std::string> used_;
+};
+
+}  // namespace svmp::cspace

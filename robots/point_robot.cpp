@@ -1,0 +1,29 @@
+#include "robots/point_robot.hpp"
+
+#include <stdexcept>
+
+namespace svmp::robots {
+
+PointRobot::PointRobot(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, double radius)
+    : Robot(lower.size() == 2 ? "point2d" : "point3d", lower, upper, static_cast<int>(lower.size())),
+      radius_(radius) {
+  if (lower.size() != 2 && lower.size() != 3)
+    throw std::invalid_argument("point robot: dimension must be 2 or 3, got " +
+                                std::to_string(lower.size()));
+  if (!(radius > 0)) throw std::invalid_argument("point robot: radius must be positive");
+  link_shapes_ = {{Shape::sphere(radius)}};
+}
+
+void PointRobot::linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const {
+  poses.resize(1);
+  poses[0].setIdentity();
+  poses[0].translation().head(q.size()) = q;
+}
+
+void PointRobot::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q,
+                               Eigen::Matrix3Xd& points) const {
+  points.setZero(3, 1);
+  points.col(0).head(q.size()) = q;
+}
+
+}  // namespace svmp::robots

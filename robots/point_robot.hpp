@@ -1,0 +1,20 @@
+#pragma once
+// A point robot in 2D or 3D (thesis ch. 3.4, Figs 3.5 and 3.7): the configuration is the position.
+// It is modelled as a sphere of tiny radius so FCL answers collision and distance queries for it.
+#include "robots/robot.hpp"
+
+namespace svmp::robots {
+
+class PointRobot final : public Robot {
+ public:
+  PointRobot(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, double radius = 1e-6);
+  double radius() const { return radius_; }
+  void linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const override;
+  void controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Matrix3Xd& points) const override;
+  int numControlPoints() const override { return 1; }
+
+ private:
+  double radius_;
+};
+
+}  // namespace svmp::robots

@@ -1,0 +1,55 @@
+#pragma once
+// The kinematic model every planner works on: dof, joint limits, forward kinematics giving every link's
+// pose, link shapes (FCL primitives) and the control points of the FK kernel (Das & Yip 2019, sec. III:
+// each distinct moving joint origin plus the tool tip).
+//
+// Thread safety: a Robot is immutable after construction; every const method may be called from many
+// threads at once (callers own the output buffers).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "robots/shape.hpp"
+
+namespace svmp::robots {
+
+using Poses = std::vector<Eigen::Isometry3d>;
+
+class Robot {
+ public:
+  virtual ~Robot() = default;
+
+  const std::string& name() const { return name_; }
+  int dof() const { return static_cast<int>(lower_.size()); }
+  int numLinks() const { return static_cast<int>(link_shapes_.size()); }
+  // 2 for robots that move in the plane z = 0 (point 2D, planar arms), 3 otherwise.
+  int workspaceDim() const { return workspace_dim_; }
+  const Eigen::VectorXd& lowerLimits() const { return lower_; }
+  const Eigen::VectorXd& upperLimits() const { return upper_; }
+  bool withinLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  const std::vector<Shape>& linkShapes(int link) const { return link_shapes_[link]; }
+  // Links that may collide with each other: not adjacent along the chain (links without shapes are
+  // skipped when deciding adjacency, so a spherical wrist's zero-length links do not hide a neighbour).
+  std::vector<std::pair<int, int>> nonAdjacentLinkPairs() const;
+
+  // World pose of every link frame; poses is resized to numLinks().
+  virtual void linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const = 0;
+  // Workspace positions of the control points, one column each (3 x numControlPoints()).
+  virtual void controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q,
+                             Eigen::Matrix3Xd& points) const = 0;
+  virtual int numControlPoints() const = 0;
+
+  // Throws std::invalid_argument naming the problem when q has the wrong size or is not finite.
+  void checkConfiguration(const Eigen::Ref<const Eigen::VectorXd>& q, const char* where) const;
+
+ protected:
+  Robot(std::string name, Eigen::VectorXd lower, Eigen::VectorXd upper, int workspace_dim);
+  std::string name_;
+  Eigen::VectorXd lower_, upper_;
+  int workspace_dim_;
+  std::vector<std::vector<Shape>> link_shapes_;
+};
+
+}  // namespace svmp::robots

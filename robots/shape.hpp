@@ -1,0 +1,35 @@
+#pragma once
+// Collision shapes of robot links and obstacles. Only FCL primitives are used: FCL meshes do not detect
+// one body entirely inside another, and obstacle sampling (thesis ch. 3.1) lives inside obstacles.
+#include <Eigen/Geometry>
+#include <string>
+
+namespace svmp::robots {
+
+enum class ShapeKind { kBox, kSphere, kCylinder, kCapsule };
+
+struct Shape {
+  ShapeKind kind = ShapeKind::kBox;
+  // kBox: full side lengths (x, y, z). kSphere: (radius, -, -).
+  // kCylinder, kCapsule: (radius, length along the local z axis, -); a capsule's length excludes its caps.
+  Eigen::Vector3d dims = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // in the frame the shape is attached to
+
+  static Shape box(const Eigen::Vector3d& sides, const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity());
+  static Shape sphere(double radius, const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity());
+  static Shape cylinder(double radius, double length,
+                        const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity());
+  static Shape capsule(double radius, double length,
+                       const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity());
+  // A capsule whose axis runs from a to b (frame coordinates); used for DH links.
+  static Shape capsuleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius);
+
+  // Empty string when the dimensions are positive and finite, else what is wrong.
+  std::string validate() const;
+  // True when point p (frame coordinates) lies inside or on the shape.
+  bool contains(const Eigen::Vector3d& p) const;
+};
+
+const char* shapeKindName(ShapeKind kind);
+
+}  // namespace svmp::robots
