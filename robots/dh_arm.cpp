@@ -170,7 +170,7 @@ std::vector<Eigen::VectorXd> DhArm::solvePointOnLinkFirstThree(
       q[1] = wrapAngle(phi2 - r[1].offset);
       q[2] = wrapAngle(psi - beta - r[2].offset);
       candidates.push_back(q);
-      if (psi0 == 0) break;
+      if (std::abs(c) >= 1 - 1e-12) break;  // stretched or folded: both elbows coincide
     }
   }
   // Keep the exact solutions (the branch formulas above leave sign conventions to this check).

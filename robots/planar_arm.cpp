@@ -106,7 +106,8 @@ std::vector<Eigen::VectorXd> PlanarArm::solvePointOnLink(
                      std::atan2(l2 * std::sin(q2), l1 + l2 * std::cos(q2)) - phi);
     q[link] = wrapAngle(q2);
     solutions.push_back(q);
-    if (elbow == 0) break;  // both elbows coincide
+    // Stretched (c2 = 1) or folded (c2 = -1, where +pi and -pi wrap to the same angle): one solution.
+    if (std::abs(c2) >= 1 - 1e-12) break;
   }
   return solutions;
 }

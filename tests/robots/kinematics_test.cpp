@@ -1,0 +1,256 @@
+// Forward kinematics and control points against poses computed by hand (not by re-running the code).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "robots/dh_arm.hpp"
+#include "robots/planar_arm.hpp"
+#include "robots/point_robot.hpp"
+
+namespace svmp::robots {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kTol = 1e-12;
+
+void expectNear(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, const char* what) {
+  EXPECT_LT((actual - expected).norm(), kTol)
+      << what << ": got [" << actual.transpose() << "], expected [" << expected.transpose() << "]";
+}
+
+Eigen::VectorXd vec(std::initializer_list<double> values) {
+  Eigen::VectorXd v(values.size());
+  int i = 0;
+  for (double x : values) v[i++] = x;
+  return v;
+}
+
+PlanarArm threeLinkArm() {
+  return PlanarArm({1.0, 0.5, 0.25}, {0.1, 0.1, 0.1}, Eigen::VectorXd::Constant(3, -kPi),
+                   Eigen::VectorXd::Constant(3, kPi), Eigen::Vector2d(0.5, -1));
+}
+
+TEST(PointRobotTest, PoseAndControlPointAreThePosition) {
+  PointRobot robot(Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 10));
+  EXPECT_EQ(robot.name(), "point2d");
+  EXPECT_EQ(robot.workspaceDim(), 2);
+  Poses poses;
+  robot.linkPoses(Eigen::Vector2d(3, 4), poses);
+  ASSERT_EQ(poses.size(), 1u);
+  expectNear(poses[0].translation(), Eigen::Vector3d(3, 4, 0), "point");
+  Eigen::Matrix3Xd points;
+  robot.controlPoints(Eigen::Vector2d(3, 4), points);
+  ASSERT_EQ(points.cols(), 1);
+  expectNear(points.col(0), Eigen::Vector3d(3, 4, 0), "control point");
+  EXPECT_THROW(PointRobot(Eigen::VectorXd::Zero(1), Eigen::VectorXd::Ones(1)), std::invalid_argument);
+  EXPECT_THROW(PointRobot(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1), 0.0), std::invalid_argument);
+}
+
+TEST(PlanarArmTest, JointsAndTipByTrigonometry) {
+  const PlanarArm arm = threeLinkArm();
+  // q = (pi/2, -pi/2, 3pi/4): absolute link angles pi/2, 0, 3pi/4. From the base (0.5, -1): joint 2 at
+  // (0.5, 0), joint 3 at (1.0, 0), tip at (1.0 - 0.25/sqrt2, 0.25/sqrt2).
+  const Eigen::VectorXd q = vec({kPi / 2, -kPi / 2, 3 * kPi / 4});
+  const double r = 0.25 / std::sqrt(2.0);
+  Poses poses;
+  arm.linkPoses(q, poses);
+  ASSERT_EQ(poses.size(), 3u);
+  expectNear(poses[0].translation(), Eigen::Vector3d(0.5, -1, 0), "joint 1");
+  expectNear(poses[1].translation(), Eigen::Vector3d(0.5, 0, 0), "joint 2");
+  expectNear(poses[2].translation(), Eigen::Vector3d(1.0, 0, 0), "joint 3");
+  // Each link frame's x axis points along its link.
+  expectNear(poses[0].linear().col(0), Eigen::Vector3d(0, 1, 0), "link 1 axis");
+  expectNear(poses[2].linear().col(0), Eigen::Vector3d(-std::sqrt(0.5), std::sqrt(0.5), 0), "link 3 axis");
+
+  Eigen::Matrix3Xd points;
+  arm.controlPoints(q, points);
+  ASSERT_EQ(points.cols(), 3);  // joints 2, 3 and the tip: joint 1 never moves
+  expectNear(points.col(0), Eigen::Vector3d(0.5, 0, 0), "control point joint 2");
+  expectNear(points.col(1), Eigen::Vector3d(1.0, 0, 0), "control point joint 3");
+  expectNear(points.col(2), Eigen::Vector3d(1.0 - r, r, 0), "control point tip");
+  EXPECT_EQ(arm.numControlPoints(), 3);
+  const Eigen::Vector2d mid = arm.pointOnLink(q, 2, 0.125);
+  EXPECT_LT((mid - Eigen::Vector2d(1.0 - r / 2, r / 2)).norm(), kTol);
+}
+
+TEST(PlanarArmTest, LinkShapesAreBoxesFromJointToJoint) {
+  const PlanarArm arm = threeLinkArm();
+  Poses poses;
+  const Eigen::VectorXd q = vec({0.3, -1.2, 2.0});
+  arm.linkPoses(q, poses);
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_EQ(arm.linkShapes(i).size(), 1u);
+    const Shape& box = arm.linkShapes(i)[0];
+    EXPECT_EQ(box.kind, ShapeKind::kBox);
+    // In the link frame the box spans x in [0, length].
+    const double length = arm.lengths()[i];
+    EXPECT_TRUE(box.contains(Eigen::Vector3d(length - 1e-9, 0, 0)));
+    EXPECT_FALSE(box.contains(Eigen::Vector3d(length + 1e-9, 0, 0)));
+    EXPECT_FALSE(box.contains(Eigen::Vector3d(-1e-9, 0, 0)));
+  }
+  EXPECT_THROW(PlanarArm({1.0, -1.0}, {0.1, 0.1}, Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)),
+               std::invalid_argument);
+  EXPECT_THROW(PlanarArm({1.0, 1.0}, {0.1}, Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)),
+               std::invalid_argument);
+}
+
+// CRS-F3, thesis Table 4.3, modified DH: frame i = frame i-1 RotX(alpha) TransX(a) RotZ(theta) TransZ(d).
+//
+// q = 0. Frame 1: origin (0, 0, 0.35), axes = world. Frame 2: RotX(pi/2) TransX(0.1) RotZ(pi/2) gives
+// origin (0.1, 0, 0.35) and axes x2 = RotX(pi/2)(0,1,0) = (0,0,1), y2 = RotX(pi/2)(-1,0,0) = (-1,0,0),
+// z2 = RotX(pi/2)(0,0,1) = (0,-1,0): the upper arm points up. Frame 3: 0.265 along x2 -> elbow at
+// (0.1, 0, 0.615), axes as frame 2. Frame 4: RotX(pi/2) turns z into -y3 = (1,0,0); TransZ(0.27) ->
+// wrist centre (0.37, 0, 0.615). Frame 5 = frame 4 RotX(-pi/2): axes of frame 3 again. Frame 6: z6 =
+// -y5 = (1,0,0); TransZ(0.075) -> flange (0.445, 0, 0.615).
+//
+// q1 = pi/2 turns all of it about the world z axis: (x, y, z) -> (-y, x, z).
+//
+// q = (0, 0, pi/2, 0, pi/2, 0). Frame 3 = frame 2 RotZ(pi/2): x3 = y2 = (-1,0,0), y3 = -x2 = (0,0,-1);
+// the forearm runs along -y3 = (0,0,1): wrist at (0.1, 0, 0.885). Frame 5 = frame 3 RotZ(pi/2) (the
+// RotX(pi/2) RotX(-pi/2) cancel): y5 = R3 (-1,0,0) = -x3 = (1,0,0); z6 = -y5 = (-1,0,0): flange at
+// (0.025, 0, 0.885).
+//
+// q = (0, pi/2, 0, 0, 0, 0). Frame 2 = RotX(pi/2) RotZ(pi): x2 = (-1,0,0), y2 = (0,0,-1). Elbow at
+// (0.1 - 0.265, 0, 0.35); forearm along -y3 = (0,0,1): wrist (-0.165, 0, 0.62); z6 = -y3: flange
+// (-0.165, 0, 0.695).
+struct CrsCase {
+  Eigen::VectorXd q;
+  Eigen::Vector3d shoulder, elbow, wrist, flange;
+};
+
+TEST(DhArmTest, CrsF3PosesMatchHandDerivation) {
+  const DhArm arm(crsF3Spec(6));
+  const std::vector<CrsCase> cases = {
+      {vec({0, 0, 0, 0, 0, 0}), {0.1, 0, 0.35}, {0.1, 0, 0.615}, {0.37, 0, 0.615}, {0.445, 0, 0.615}},
+      {vec({kPi / 2, 0, 0, 0, 0, 0}), {0, 0.1, 0.35}, {0, 0.1, 0.615}, {0, 0.37, 0.615},
+       {0, 0.445, 0.615}},
+      {vec({0, 0, kPi / 2, 0, kPi / 2, 0}), {0.1, 0, 0.35}, {0.1, 0, 0.615}, {0.1, 0, 0.885},
+       {0.025, 0, 0.885}},
+      {vec({0, kPi / 2, 0, 0, 0, 0}), {0.1, 0, 0.35}, {-0.165, 0, 0.35}, {-0.165, 0, 0.62},
+       {-0.165, 0, 0.695}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(::testing::Message() << "q = [" << c.q.transpose() << "]");
+    Poses poses;
+    arm.linkPoses(c.q, poses);
+    ASSERT_EQ(poses.size(), 6u);
+    expectNear(poses[0].translation(), Eigen::Vector3d(0, 0, 0.35), "frame 1");
+    expectNear(poses[1].translation(), c.shoulder, "frame 2");
+    expectNear(poses[2].translation(), c.elbow, "frame 3");
+    expectNear(poses[3].translation(), c.wrist, "frame 4");
+    expectNear(poses[4].translation(), c.wrist, "frame 5");
+    expectNear(poses[5].translation(), c.flange, "frame 6");
+    expectNear(arm.flangePose(c.q).translation(), c.flange, "flange");
+
+    // Control points: the distinct moving joint origins (frames 2, 3, 4) and the tool tip.
+    Eigen::Matrix3Xd points;
+    arm.controlPoints(c.q, points);
+    ASSERT_EQ(points.cols(), 4);
+    expectNear(points.col(0), c.shoulder, "control point frame 2");
+    expectNear(points.col(1), c.elbow, "control point frame 3");
+    expectNear(points.col(2), c.wrist, "control point wrist");
+    expectNear(points.col(3), c.flange, "control point tip");
+  }
+}
+
+TEST(DhArmTest, CrsF3SimplifiedModelEndsAtTheWristCentre) {
+  const DhArm arm(crsF3Spec(3));
+  EXPECT_EQ(arm.dof(), 3);
+  expectNear(arm.flangePose(vec({0, 0, 0})).translation(), Eigen::Vector3d(0.37, 0, 0.615), "wrist");
+  expectNear(arm.flangePose(vec({0, 0, kPi / 2})).translation(), Eigen::Vector3d(0.1, 0, 0.885),
+             "wrist, elbow up");
+  Eigen::Matrix3Xd points;
+  arm.controlPoints(vec({0, 0, 0}), points);
+  ASSERT_EQ(points.cols(), 3);  // frames 2, 3 and the wrist centre
+  expectNear(points.col(2), Eigen::Vector3d(0.37, 0, 0.615), "tip");
+  EXPECT_THROW(crsF3Spec(4), std::invalid_argument);
+}
+
+TEST(DhArmTest, CrsF3ToolTipIsInTheFlangeFrame) {
+  DhArmSpec spec = crsF3Spec(6);
+  spec.tool_tip = Eigen::Vector3d(0, 0, 0.1);  // 0.1 further along the flange's z = world x at q = 0
+  spec.tool = {Shape::box(Eigen::Vector3d(0.05, 0.05, 0.05))};
+  const DhArm arm(spec);
+  Eigen::Matrix3Xd points;
+  arm.controlPoints(Eigen::VectorXd::Zero(6), points);
+  ASSERT_EQ(points.cols(), 5);  // frame 6's origin is now distinct from the tip
+  expectNear(points.col(3), Eigen::Vector3d(0.445, 0, 0.615), "frame 6");
+  expectNear(points.col(4), Eigen::Vector3d(0.545, 0, 0.615), "tool tip");
+  EXPECT_EQ(arm.linkShapes(5).size(), 1u);
+}
+
+// Panda (modified DH, pandaSpec). q = 0: frame 1 (0,0,0.333); frame 2 = RotX(-pi/2), same origin;
+// frame 3 = RotX(pi/2) TransZ(0.316): axes = world, origin (0,0,0.649); frame 4 = RotX(pi/2)
+// TransX(0.0825): (0.0825,0,0.649); frame 5 = RotX(-pi/2) TransX(-0.0825) TransZ(0.384): axes = world,
+// origin (0,0,1.033); frame 6 = RotX(pi/2), same origin; frame 7 = RotX(pi/2) TransX(0.088): origin
+// (0.088,0,1.033), rotation RotX(pi) so z7 = (0,0,-1); flange = TransZ(0.107): (0.088, 0, 0.926).
+TEST(DhArmTest, PandaAtZeroMatchesHandDerivation) {
+  const DhArm arm(pandaSpec());
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(7);
+  Poses poses;
+  arm.linkPoses(q, poses);
+  ASSERT_EQ(poses.size(), 7u);
+  expectNear(poses[2].translation(), Eigen::Vector3d(0, 0, 0.649), "frame 3");
+  expectNear(poses[3].translation(), Eigen::Vector3d(0.0825, 0, 0.649), "frame 4");
+  expectNear(poses[4].translation(), Eigen::Vector3d(0, 0, 1.033), "frame 5");
+  expectNear(poses[6].translation(), Eigen::Vector3d(0.088, 0, 1.033), "frame 7");
+  const Eigen::Isometry3d flange = arm.flangePose(q);
+  expectNear(flange.translation(), Eigen::Vector3d(0.088, 0, 0.926), "flange");
+  expectNear(flange.linear().col(2), Eigen::Vector3d(0, 0, -1), "flange z");
+
+  Eigen::Matrix3Xd points;
+  arm.controlPoints(q, points);
+  ASSERT_EQ(points.cols(), 5);  // frames 3, 4, 5, 7 and the flange
+  expectNear(points.col(0), Eigen::Vector3d(0, 0, 0.649), "cp frame 3");
+  expectNear(points.col(1), Eigen::Vector3d(0.0825, 0, 0.649), "cp frame 4");
+  expectNear(points.col(2), Eigen::Vector3d(0, 0, 1.033), "cp frame 5");
+  expectNear(points.col(3), Eigen::Vector3d(0.088, 0, 1.033), "cp frame 7");
+  expectNear(points.col(4), Eigen::Vector3d(0.088, 0, 0.926), "cp flange");
+}
+
+// Panda, q2 = 0.7: joint 2's axis at q = 0 is z2 = RotX(-pi/2) (0,0,1) = (0,1,0) through (0,0,0.333);
+// everything beyond it turns rigidly about that axis (geometry, independent of the DH composition).
+TEST(DhArmTest, PandaJointTwoSwingsTheArmAboutItsAxis) {
+  const DhArm arm(pandaSpec());
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(7);
+  Poses zero, swung;
+  arm.linkPoses(q, zero);
+  q[1] = 0.7;
+  arm.linkPoses(q, swung);
+  // Joint 2 rotates everything beyond it rigidly about its axis (z2 through frame 2's origin).
+  const Eigen::Vector3d pivot = zero[1].translation();
+  const Eigen::Vector3d axis = zero[1].linear().col(2);
+  EXPECT_LT((axis - Eigen::Vector3d(0, 1, 0)).norm(), kTol);  // RotX(-pi/2) z = (0, 1, 0)
+  const Eigen::AngleAxisd rotation(0.7, axis);
+  for (int i = 2; i < 7; ++i)
+    expectNear(swung[i].translation(), pivot + rotation * (zero[i].translation() - pivot), "frame");
+  // About +y by 0.7 the upper arm tips towards +x: frame 3 at 0.316 (sin 0.7, 0, cos 0.7) above frame 2.
+  expectNear(swung[2].translation(),
+             Eigen::Vector3d(0.316 * std::sin(0.7), 0, 0.333 + 0.316 * std::cos(0.7)), "frame 3");
+}
+
+TEST(RobotTest, LimitsAndConfigurationChecks) {
+  const PlanarArm arm = threeLinkArm();
+  EXPECT_TRUE(arm.withinLimits(vec({kPi, -kPi, 0})));
+  EXPECT_FALSE(arm.withinLimits(vec({kPi + 1e-9, 0, 0})));
+  EXPECT_FALSE(arm.withinLimits(vec({std::nan(""), 0, 0})));
+  EXPECT_THROW(arm.checkConfiguration(vec({0, 0}), "test"), std::invalid_argument);
+  EXPECT_THROW(arm.checkConfiguration(vec({0, 0, INFINITY}), "test"), std::invalid_argument);
+  EXPECT_NO_THROW(arm.checkConfiguration(vec({0, 0, 0}), "test"));
+  EXPECT_THROW(PlanarArm({1.0}, {0.1}, vec({1}), vec({0})), std::invalid_argument);
+}
+
+TEST(RobotTest, NonAdjacentPairsSkipLinksWithoutShapes) {
+  const PlanarArm arm = threeLinkArm();
+  EXPECT_EQ(arm.nonAdjacentLinkPairs(), (std::vector<std::pair<int, int>>{{0, 2}}));
+  // CRS-F3: links 4 and 6 (indices 3, 5) have no shapes (zero-length wrist links), so the forearm
+  // (index 2) is adjacent to the wrist capsule (index 4).
+  const DhArm crs(crsF3Spec(6));
+  EXPECT_TRUE(crs.linkShapes(3).empty());
+  EXPECT_TRUE(crs.linkShapes(5).empty());
+  EXPECT_EQ(crs.nonAdjacentLinkPairs(), (std::vector<std::pair<int, int>>{{0, 2}, {0, 4}, {1, 4}}));
+}
+
+}  // namespace
+}  // namespace svmp::robots
