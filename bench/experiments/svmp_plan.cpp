@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "bench/experiments/driver_options.hpp"
+#include "bench/experiments/experiment.hpp"
 #include "bench/experiments/scenario_check.hpp"
 #include "cspace/scenario.hpp"
 
@@ -23,13 +24,20 @@ int main(int argc, char** argv) {
   try {
     const cspace::Scenario scenario = cspace::loadScenario(options.scenario);
     if (options.check) return experiments::printScenarioCheck(scenario, std::cout) ? 0 : 1;
-    std::cerr << "svmp-plan: planners are not built yet; use --check\n";
-    return 2;
+    std::cerr << "svmp-plan: " << scenario.name << ": running " << options.planners.size() << " planner(s), "
+              << options.runs << " run(s) each\n";
+    const auto results = experiments::runExperiment(scenario, options, std::cerr);
+    experiments::printTable(scenario, options, results, std::cout);
+    if (!options.json_path.empty()) experiments::writeJson(options.json_path, scenario, options, results);
+    return 0;
   } catch (const cspace::ScenarioError& e) {
     std::cerr << "svmp-plan: " << e.what() << "\n";
     return 2;
   } catch (const std::invalid_argument& e) {
     std::cerr << "svmp-plan: " << options.scenario << ": " << e.what() << "\n";
+    return 2;
+  } catch (const std::runtime_error& e) {
+    std::cerr << "svmp-plan: " << e.what() << "\n";
     return 2;
   }
 }

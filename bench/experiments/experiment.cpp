@@ -1,0 +1,219 @@
+#include "bench/experiments/experiment.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+
+#include "cspace/collision_checker.hpp"
+#include "cspace/motion_validator.hpp"
+#include "planners/planner.hpp"
+
+namespace svmp::experiments {
+namespace {
+
+struct Stats {
+  double mean = 0, std = 0, median = 0;
+  int count = 0;
+};
+
+Stats statsOf(std::vector<double> v) {
+  Stats s;
+  s.count = static_cast<int>(v.size());
+  if (v.empty()) return s;
+  for (double x : v) s.mean += x;
+  s.mean /= v.size();
+  for (double x : v) s.std += (x - s.mean) * (x - s.mean);
+  s.std = v.size() > 1 ? std::sqrt(s.std / (v.size() - 1)) : 0;
+  std::sort(v.begin(), v.end());
+  s.median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  return s;
+}
+
+template <class F>
+Stats collect(const PlannerRuns& runs, bool solved_only, F field) {
+  std::vector<double> v;
+  for (const auto& r : runs.runs)
+    if (!solved_only || r.result.solved()) v.push_back(field(r));
+  return statsOf(v);
+}
+
+// Path quality measured by an independent checker, so the planners' counters are untouched.
+void measurePath(const cspace::Scenario& scenario, const cspace::ConfigurationSpace& space,
+                 const cspace::CollisionChecker& checker, RunRecord& record) {
+  const auto& path = record.result.path;
+  if (path.empty()) return;
+  const double step = scenario.resolution / 4;
+  record.strict_correct = true;
+  record.min_clearance = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd q(space.dim());
+  auto visit = [&](const Eigen::VectorXd& c) {
+    if (!checker.isValid(c)) record.strict_correct = false;
+    record.min_clearance = std::min(record.min_clearance, checker.clearance(c));
+  };
+  visit(path.front());
+  for (size_t i = 1; i < path.size(); ++i) {
+    const double length = space.distance(path[i - 1], path[i]);
+    record.path_length += length;
+    const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
+    for (int k = 1; k <= n; ++k) {
+      space.interpolate(path[i - 1], path[i], static_cast<double>(k) / n, q);
+      visit(q);
+    }
+  }
+}
+
+std::string jsonStats(const Stats& s) {
+  std::ostringstream o;
+  o << std::setprecision(10) << "{\"mean\": " << s.mean << ", \"std\": " << s.std << ", \"median\": " << s.median
+    << ", \"n\": " << s.count << "}";
+  return o.str();
+}
+
+// std::setw counts bytes; "±" is two, so pad by code points instead.
+std::string pad(const std::string& text, size_t width) {
+  size_t points = 0;
+  for (unsigned char c : text) points += (c & 0xC0) != 0x80;
+  return text + std::string(points < width ? width - points : 1, ' ');
+}
+
+std::string meanStd(const Stats& s, int precision) {
+  if (s.count == 0) return "-";
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(precision) << s.mean << " ± " << s.std;
+  return o.str();
+}
+
+}  // namespace
+
+int PlannerRuns::solved() const {
+  return static_cast<int>(std::count_if(runs.begin(), runs.end(), [](const RunRecord& r) { return r.result.solved(); }));
+}
+
+int PlannerRuns::strictCorrect() const {
+  return static_cast<int>(std::count_if(runs.begin(), runs.end(), [](const RunRecord& r) { return r.strict_correct; }));
+}
+
+std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
+                                       std::ostream& log) {
+  omp_set_num_threads(options.threads);
+  const cspace::ConfigurationSpace space = scenario.makeSpace();
+  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
+  const cspace::MotionValidator validator(checker, space, scenario.resolution);
+  const cspace::CollisionChecker measuring(scenario.robot, scenario.environment, scenario.self_collision);
+  const planners::PlanningContext context{space, checker, validator, options.threads};
+
+  // Build every planner first: a bad parameter stops the run before any work.
+  std::vector<std::unique_ptr<planners::Planner>> planners;
+  for (const auto& name : options.planners) {
+    cspace::ParameterSet params = scenario.paramsFor(name);
+    for (const auto& [key, value] : options.overrides)
+      if (key.rfind(name + ".", 0) == 0) params.set(key.substr(name.size() + 1), value);
+    planners.push_back(planners::makePlanner(name, context, params));
+  }
+  for (const auto& [key, value] : options.overrides) {
+    const std::string planner = key.substr(0, key.find('.'));
+    if (std::find(options.planners.begin(), options.planners.end(), planner) == options.planners.end())
+      throw cspace::ScenarioError("flag --set " + key + "=" + value + ": planner '" + planner +
+                                  "' is not among --planners");
+  }
+
+  std::vector<PlannerRuns> results;
+  for (size_t p = 0; p < planners.size(); ++p) {
+    PlannerRuns runs{options.planners[p], {}};
+    for (int r = 0; r < options.runs; ++r) {
+      const std::uint64_t seed = options.seed + r;
+      RunRecord record;
+      const auto t0 = std::chrono::steady_clock::now();
+      record.result = planners[p]->solve(scenario.queries.front(), seed);
+      record.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      measurePath(scenario, space, measuring, record);
+      log << "  " << runs.planner << " seed " << seed << ": " << planners::planStatusName(record.result.status)
+          << ", " << record.result.collision_checks << " checks, " << std::fixed << std::setprecision(1)
+          << record.time_ms << " ms" << (record.result.message.empty() ? "" : " (" + record.result.message + ")")
+          << "\n";
+      runs.runs.push_back(std::move(record));
+    }
+    results.push_back(std::move(runs));
+  }
+  return results;
+}
+
+void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
+                const std::vector<PlannerRuns>& results, std::ostream& out) {
+  out << "\n" << scenario.name << " (dof " << scenario.robot->dof() << "), " << options.runs << " runs, seeds "
+      << options.seed << ".." << options.seed + options.runs - 1 << ", " << options.threads << " thread(s)\n";
+  out << "mean ± std over all runs (path length and clearance over solved runs); CD = collision checks, "
+         "LP = local planner calls\n";
+  const int w = 20;
+  out << std::left << std::setw(17) << "planner" << std::setw(9) << "success" << std::setw(8) << "strict"
+      << std::setw(w) << "CD" << std::setw(w) << "LP" << std::setw(w) << "milestones" << std::setw(w)
+      << "time (ms)" << std::setw(w) << "path length" << "min clearance\n";
+  for (const auto& runs : results) {
+    std::ostringstream success;
+    success << runs.solved() << "/" << runs.runs.size();
+    out << std::left << std::setw(17) << runs.planner << std::setw(9) << success.str() << std::setw(8)
+        << runs.strictCorrect()
+        << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.collision_checks); }), 0), w)
+        << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.local_planner_calls); }), 0), w)
+        << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.milestones); }), 0), w)
+        << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return r.time_ms; }), 1), w)
+        << pad(meanStd(collect(runs, true, [](const RunRecord& r) { return r.path_length; }), 3), w)
+        << meanStd(collect(runs, true, [](const RunRecord& r) { return r.min_clearance; }), 4) << "\n";
+  }
+  out << std::right;
+}
+
+void writeJson(const std::string& file, const cspace::Scenario& scenario, const DriverOptions& options,
+               const std::vector<PlannerRuns>& results) {
+  std::ostringstream o;
+  o << "{ \"scenario\": \"" << scenario.name << "\", \"file\": \"" << scenario.path << "\", \"dof\": "
+    << scenario.robot->dof() << ", \"runs\": " << options.runs << ", \"seed\": " << options.seed
+    << ", \"threads\": " << options.threads << ",\n  \"results\": [\n";
+  for (size_t p = 0; p < results.size(); ++p) {
+    const auto& runs = results[p];
+    const double n = static_cast<double>(runs.runs.size());
+    auto field = [&](auto f) { return jsonStats(collect(runs, false, f)); };
+    auto solved_field = [&](auto f) { return jsonStats(collect(runs, true, f)); };
+    o << "    { \"planner\": \"" << runs.planner << "\", \"solved\": " << runs.solved()
+      << ", \"success_rate\": " << runs.solved() / n << ", \"strict_correct\": " << runs.strictCorrect()
+      << ",\n      \"collision_checks\": " << field([](const RunRecord& r) { return double(r.result.collision_checks); })
+      << ",\n      \"local_planner_calls\": " << field([](const RunRecord& r) { return double(r.result.local_planner_calls); })
+      << ",\n      \"milestones\": " << field([](const RunRecord& r) { return double(r.result.milestones); })
+      << ",\n      \"roadmap_edges\": " << field([](const RunRecord& r) { return double(r.result.roadmap_edges); })
+      << ",\n      \"support_vectors\": " << field([](const RunRecord& r) { return double(r.result.support_vectors); })
+      << ",\n      \"time_ms\": " << field([](const RunRecord& r) { return r.time_ms; })
+      << ",\n      \"phase_ms\": {\"sampling\": " << field([](const RunRecord& r) { return r.result.times.sampling_ms; })
+      << ", \"training\": " << field([](const RunRecord& r) { return r.result.times.training_ms; })
+      << ", \"milestones\": " << field([](const RunRecord& r) { return r.result.times.milestones_ms; })
+      << ", \"roadmap\": " << field([](const RunRecord& r) { return r.result.times.roadmap_ms; })
+      << ", \"query\": " << field([](const RunRecord& r) { return r.result.times.query_ms; }) << "}"
+      << ",\n      \"path_length\": " << solved_field([](const RunRecord& r) { return r.path_length; })
+      << ",\n      \"min_clearance\": " << solved_field([](const RunRecord& r) { return r.min_clearance; })
+      << ",\n      \"statuses\": [";
+    for (size_t r = 0; r < runs.runs.size(); ++r)
+      o << (r ? ", " : "") << "\"" << planners::planStatusName(runs.runs[r].result.status) << "\"";
+    o << "] }" << (p + 1 < results.size() ? "," : "") << "\n";
+  }
+  o << "  ]\n}\n";
+  const std::string tmp = file + ".tmp";
+  {
+    std::ofstream f(tmp);
+    if (!f || !(f << o.str()) || !f.flush()) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error(file + ": cannot write the JSON file");
+    }
+  }
+  if (std::rename(tmp.c_str(), file.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(file + ": cannot write the JSON file");
+  }
+}
+
+}  // namespace svmp::experiments

@@ -1,0 +1,131 @@
+#include "cspace/obstacle_sampler.hpp"
+
+#include <limits>
+#include <sstream>
+
+namespace svmp::cspace {
+namespace {
+
+struct Tree {
+  std::vector<Eigen::VectorXd> nodes;
+  std::vector<char> boundary;
+  std::string warning;
+};
+
+// Nearest node by a linear scan: trees hold a few hundred nodes, so a scan over contiguous scaled
+// coordinates beats maintaining a dynamic k-d tree.
+int nearestNode(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd& x) {
+  int best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < count; ++i) {
+    const double d = (scaled.col(i) - x).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+Tree growTree(const CollisionChecker& checker, const ConfigurationSpace& space, const Obstacle& obstacle,
+              const ObstacleSamplerOptions& options, std::uint64_t seed) {
+  Tree tree;
+  Rng rng(seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(obstacle.id)));
+  Eigen::VectorXd root;
+  if (obstacle.root_sample) {
+    root = *obstacle.root_sample;
+    if (!checker.hits(root, obstacle.id)) {
+      tree.warning = "obstacle '" + obstacle.name + "': the scenario's sample does not hit it";
+      return tree;
+    }
+  } else {
+    Eigen::VectorXd q(space.dim());
+    bool found = false;
+    for (int a = 0; a < options.max_root_attempts && !found; ++a) {
+      space.sampleUniform(rng, q);
+      found = checker.hits(q, obstacle.id);
+    }
+    if (!found) {
+      tree.warning = "obstacle '" + obstacle.name + "': no configuration hitting it in " +
+                     std::to_string(options.max_root_attempts) + " uniform samples; give `sample:`";
+      return tree;
+    }
+    root = q;
+  }
+  const int n = options.samples_per_tree;
+  const Eigen::VectorXd& scale = space.metricScale();
+  Eigen::MatrixXd scaled(space.dim(), n);
+  tree.nodes.push_back(root);
+  tree.boundary.push_back(0);
+  scaled.col(0) = root.cwiseProduct(scale);
+  Eigen::VectorXd q_rand(space.dim());
+  const long max_iterations = static_cast<long>(options.max_iterations_factor) * n;
+  long iteration = 0;
+  while (static_cast<int>(tree.nodes.size()) < n && iteration++ < max_iterations) {
+    space.sampleUniform(rng, q_rand);
+    const int e = nearestNode(scaled, static_cast<int>(tree.nodes.size()), q_rand.cwiseProduct(scale));
+    const Eigen::VectorXd q_new = space.steer(tree.nodes[e], q_rand, options.step);
+    if (checker.hits(q_new, obstacle.id)) {
+      scaled.col(static_cast<Eigen::Index>(tree.nodes.size())) = q_new.cwiseProduct(scale);
+      tree.nodes.push_back(q_new);
+      tree.boundary.push_back(0);
+    } else {
+      tree.boundary[e] = 1;
+    }
+  }
+  if (static_cast<int>(tree.nodes.size()) < n) {
+    std::ostringstream w;
+    w << "obstacle '" << obstacle.name << "': tree stopped at " << tree.nodes.size() << " of " << n
+      << " samples after " << max_iterations << " expansions";
+    tree.warning = w.str();
+  }
+  return tree;
+}
+
+}  // namespace
+
+std::string ObstacleSamplerOptions::validate() const {
+  std::ostringstream err;
+  if (!(step > 0) || !std::isfinite(step)) err << "step must be positive, got " << step;
+  else if (samples_per_tree < 1) err << "samples_per_tree must be >= 1, got " << samples_per_tree;
+  else if (max_root_attempts < 1) err << "max_root_attempts must be >= 1";
+  return err.str();
+}
+
+int ObstacleSamples::numBoundary() const {
+  int n = 0;
+  for (char b : boundary) n += b;
+  return n;
+}
+
+ObstacleSamples sampleObstacles(const CollisionChecker& checker, const ConfigurationSpace& space,
+                                const ObstacleSamplerOptions& options, std::uint64_t seed,
+                                int threads) {
+  const std::string err = options.validate();
+  if (!err.empty()) throw std::invalid_argument("obstacle sampler: " + err);
+  std::vector<const Obstacle*> targets;
+  for (const auto& o : checker.environment().obstacles())
+    if (!o.is_virtual || options.include_virtual) targets.push_back(&o);
+  std::vector<Tree> trees(targets.size());
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+  for (int t = 0; t < static_cast<int>(targets.size()); ++t)
+    trees[t] = growTree(checker, space, *targets[t], options, seed);
+
+  ObstacleSamples samples;
+  int total = 0;
+  for (const auto& tree : trees) total += static_cast<int>(tree.nodes.size());
+  samples.points.resize(space.dim(), total);
+  int column = 0;
+  for (size_t t = 0; t < trees.size(); ++t) {
+    samples.tree_sizes.push_back(static_cast<int>(trees[t].nodes.size()));
+    if (!trees[t].warning.empty()) samples.warnings.push_back(trees[t].warning);
+    for (size_t i = 0; i < trees[t].nodes.size(); ++i) {
+      samples.points.col(column++) = trees[t].nodes[i];
+      samples.labels.push_back(targets[t]->id);
+      samples.boundary.push_back(trees[t].boundary[i]);
+    }
+  }
+  return samples;
+}
+
+}  // namespace svmp::cspace

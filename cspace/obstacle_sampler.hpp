@@ -1,0 +1,41 @@
+#pragma once
+// Obstacle sampling of SVMP, thesis ch. 3.1 (Algorithm 1, read as the text describes it): one RRT-like
+// tree per C-obstacle region, rooted at a configuration that hits that obstacle (given in the scenario
+// or found by uniform sampling), grown towards uniform random configurations by a fixed step in the
+// weighted metric. q_new joins the tree when it hits the same obstacle; otherwise the node it grew from,
+// q_expansion, is marked a boundary sample and q_new is dropped. Each tree stops at N nodes.
+// Trees grow in parallel (OpenMP), each from its own generator seeded by (seed, obstacle id), so the
+// result does not depend on the thread count.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cspace/collision_checker.hpp"
+#include "cspace/configuration_space.hpp"
+
+namespace svmp::cspace {
+
+struct ObstacleSamplerOptions {
+  double step = 0.1;             // expansion step in the weighted metric
+  int samples_per_tree = 200;    // N
+  int max_root_attempts = 200000;  // uniform draws when searching for a root
+  int max_iterations_factor = 50;  // a tree gives up after factor * N expansions
+  bool include_virtual = false;  // also sample virtual (guide) obstacles
+  std::string validate() const;  // "" when valid, else what is wrong
+};
+
+struct ObstacleSamples {
+  Eigen::MatrixXd points;        // dof x n, one sample per column
+  std::vector<int> labels;       // obstacle id of each sample
+  std::vector<char> boundary;    // 1 when the sample is a boundary sample
+  std::vector<int> tree_sizes;   // per obstacle, in environment order
+  std::vector<std::string> warnings;  // roots not found, trees that stopped early
+  int size() const { return static_cast<int>(labels.size()); }
+  int numBoundary() const;
+};
+
+ObstacleSamples sampleObstacles(const CollisionChecker& checker, const ConfigurationSpace& space,
+                                const ObstacleSamplerOptions& options, std::uint64_t seed,
+                                int threads);
+
+}  // namespace svmp::cspace

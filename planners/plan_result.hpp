@@ -1,0 +1,32 @@
+#pragma once
+// What every planner returns (DESIGN.md "Counters and results"): a status, the path and named counters.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace svmp::planners {
+
+enum class PlanStatus { kSolved, kFailed, kTimeout, kInvalidStart, kInvalidGoal, kInvalidInput };
+
+const char* planStatusName(PlanStatus status);
+
+struct PhaseTimes {
+  double sampling_ms = 0, training_ms = 0, milestones_ms = 0, roadmap_ms = 0, query_ms = 0;
+  double total() const { return sampling_ms + training_ms + milestones_ms + roadmap_ms + query_ms; }
+};
+
+struct PlanResult {
+  PlanStatus status = PlanStatus::kFailed;
+  std::string message;                // why, when not solved
+  std::vector<Eigen::VectorXd> path;  // start ... goal, straight segments between
+  std::uint64_t collision_checks = 0;
+  std::uint64_t local_planner_calls = 0;
+  std::uint64_t milestones = 0;
+  std::uint64_t roadmap_edges = 0;
+  std::uint64_t support_vectors = 0;
+  PhaseTimes times;
+  bool solved() const { return status == PlanStatus::kSolved; }
+};
+
+}  // namespace svmp::planners

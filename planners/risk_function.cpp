@@ -1,0 +1,111 @@
+#include "planners/risk_function.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace svmp::planners {
+namespace {
+
+// Stack storage for per-call scaled coordinates and gradients: no allocation in the hot loop.
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 32, 1>;
+
+}  // namespace
+
+const char* descentStatusName(DescentStatus status) {
+  switch (status) {
+    case DescentStatus::kOnBoundary: return "on_boundary";
+    case DescentStatus::kLocalMinimum: return "local_minimum";
+    case DescentStatus::kIterationLimit: return "iteration_limit";
+  }
+  return "?";
+}
+
+RiskFunction::RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int> classes,
+                           Eigen::VectorXd scale, bool truncated)
+    : models_(std::move(models)), classes_(std::move(classes)), scale_(std::move(scale)) {
+  if (models_.empty() || models_.size() != classes_.size())
+    throw std::invalid_argument("risk function: need one model per class");
+  if (scale_.size() > 32) throw std::invalid_argument("risk function: at most 32 dimensions");
+  for (const auto& m : models_)
+    if (m.dim() != scale_.size())
+      throw std::invalid_argument("risk function: model dimension differs from the space's");
+  const bool rbf = models_.front().kernel().type == svm::KernelType::kRbf;
+  if (truncated && rbf)
+    for (const auto& m : models_) truncated_.emplace_back(m);
+}
+
+int RiskFunction::classIndex(int label) const {
+  auto it = std::find(classes_.begin(), classes_.end(), label);
+  return it == classes_.end() ? -1 : static_cast<int>(it - classes_.begin());
+}
+
+double RiskFunction::evaluateScaled(int k, const double* x, double* grad_x) const {
+  if (!truncated_.empty())
+    return grad_x ? truncated_[k].decisionAndGradient(x, grad_x) : truncated_[k].decision(x);
+  return grad_x ? models_[k].decisionAndGradient(x, grad_x) : models_[k].decision(x);
+}
+
+double RiskFunction::decision(int k, const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  const SmallVector x = q.cwiseProduct(scale_);
+  return evaluateScaled(k, x.data(), nullptr);
+}
+
+double RiskFunction::decisionAndGradient(int k, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                         Eigen::Ref<Eigen::VectorXd> grad) const {
+  const SmallVector x = q.cwiseProduct(scale_);
+  SmallVector gx(x.size());
+  const double f = evaluateScaled(k, x.data(), gx.data());
+  grad = gx.cwiseProduct(scale_);  // chain rule: dF/dq = dF/dx .* sqrt(w)
+  return f;
+}
+
+DescentResult RiskFunction::descend(int k, const Eigen::Ref<const Eigen::VectorXd>& q0,
+                                    const cspace::ConfigurationSpace& space,
+                                    const DescentOptions& options) const {
+  const int n = static_cast<int>(scale_.size());
+  // Work in scaled coordinates x, where the weighted metric is Euclidean.
+  const SmallVector lower = space.lower().cwiseProduct(scale_), upper = space.upper().cwiseProduct(scale_);
+  SmallVector x = q0.cwiseProduct(scale_), g(n), trial(n), trial_g(n);
+  double f = evaluateScaled(k, x.data(), g.data());
+  DescentResult result;
+  result.status = DescentStatus::kIterationLimit;
+  for (result.iterations = 0; result.iterations < options.max_iterations; ++result.iterations) {
+    if (std::abs(f) <= options.tolerance) {
+      result.status = DescentStatus::kOnBoundary;
+      break;
+    }
+    const double g2 = g.squaredNorm();
+    if (!(g2 > 1e-300)) {
+      result.status = DescentStatus::kLocalMinimum;
+      break;
+    }
+    SmallVector step = (-f / g2) * g;
+    const double length = step.norm();
+    if (length > options.max_step) step *= options.max_step / length;
+    bool improved = false;
+    for (int h = 0; h <= options.max_halvings; ++h, step *= 0.5) {
+      trial = (x + step).cwiseMax(lower).cwiseMin(upper);
+      if ((trial - x).norm() < options.min_step) break;
+      const double trial_f = evaluateScaled(k, trial.data(), trial_g.data());
+      if (std::abs(trial_f) < std::abs(f)) {
+        x = trial;
+        g = trial_g;
+        f = trial_f;
+        improved = true;
+        break;
+      }
+    }
+    if (!improved) {
+      result.status = DescentStatus::kLocalMinimum;
+      break;
+    }
+  }
+  if (result.status == DescentStatus::kIterationLimit && std::abs(f) <= options.tolerance)
+    result.status = DescentStatus::kOnBoundary;
+  result.q = x.cwiseQuotient(scale_);
+  result.risk = std::abs(f);
+  return result;
+}
+
+}  // namespace svmp::planners

@@ -1,0 +1,76 @@
+#pragma once
+// The risk function R_k(q) = |F_k(q)| (thesis eqs. 2.26 and 3.1) over one-versus-rest SVM models, its
+// gradient, and a descent to the decision boundary F_k = 0 where R_k has its minima (ch. 3.3). Shared by
+// SVMP (one model per obstacle class) and the local planner of ch. 2 (one binary model).
+//
+// The models are trained on scaled coordinates x = sqrt(w) .* q so the RBF kernel measures the weighted
+// joint metric of eq. 4.3; this class takes and returns configurations q. With an RBF kernel F is
+// evaluated through the exp(-5)-truncated sum (ch. 4.3.1); other kernels use the full sum.
+// Thread safety: const methods may be called concurrently.
+#include <Eigen/Core>
+#include <variant>
+#include <vector>
+
+#include "cspace/configuration_space.hpp"
+#include "svm/model.hpp"
+#include "svm/truncated_evaluator.hpp"
+
+namespace svmp::planners {
+
+enum class DescentStatus {
+  kOnBoundary,     // |F| <= tolerance: a global minimum of R
+  kLocalMinimum,   // no step decreases R (flat or stuck with |F| > tolerance)
+  kIterationLimit  // max_iterations reached
+};
+
+const char* descentStatusName(DescentStatus status);
+
+struct DescentOptions {
+  double tolerance = 1e-3;  // |F| at which the boundary counts as reached
+  double max_step = 0.1;    // longest step, in the weighted metric
+  double min_step = 1e-9;   // a step shorter than this ends the descent as a local minimum
+  int max_iterations = 100;
+  int max_halvings = 12;    // backtracking halvings before declaring a local minimum
+};
+
+struct DescentResult {
+  Eigen::VectorXd q;
+  double risk = 0;
+  int iterations = 0;
+  DescentStatus status = DescentStatus::kIterationLimit;
+};
+
+class RiskFunction {
+ public:
+  RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int> classes, Eigen::VectorXd scale,
+               bool truncated = true);
+
+  int numClasses() const { return static_cast<int>(models_.size()); }
+  const std::vector<int>& classes() const { return classes_; }
+  // Index k of a class label, -1 when unknown.
+  int classIndex(int label) const;
+  const svm::BinaryModel& model(int k) const { return models_[k]; }
+  const Eigen::VectorXd& scale() const { return scale_; }
+
+  double decision(int k, const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  // F_k(q) and dF_k/dq.
+  double decisionAndGradient(int k, const Eigen::Ref<const Eigen::VectorXd>& q,
+                             Eigen::Ref<Eigen::VectorXd> grad) const;
+  double risk(int k, const Eigen::Ref<const Eigen::VectorXd>& q) const { return std::abs(decision(k, q)); }
+
+  // Descends R_k from q0, staying inside the space's bounds: each step is the Newton step towards
+  // F_k = 0 along the gradient (-F g / |g|^2 in the scaled coordinates), cut to max_step and halved
+  // until R_k decreases.
+  DescentResult descend(int k, const Eigen::Ref<const Eigen::VectorXd>& q0,
+                        const cspace::ConfigurationSpace& space, const DescentOptions& options) const;
+
+ private:
+  double evaluateScaled(int k, const double* x, double* grad_x) const;
+
+  std::vector<svm::BinaryModel> models_;
+  std::vector<svm::TruncatedRbfEvaluator> truncated_;  // empty unless RBF and truncation asked for
+  std::vector<int> classes_;
+  Eigen::VectorXd scale_;
+};
+
+}  // namespace svmp::planners

@@ -1,0 +1,89 @@
+#include "planners/roadmap.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <queue>
+
+namespace svmp::planners {
+
+
+void UnionFind::resize(int n) {
+  const int old = size();
+  parent_.resize(n);
+  rank_.resize(n, 0);
+  for (int i = old; i < n; ++i) parent_[i] = i;
+}
+
+int UnionFind::find(int a) {
+  while (parent_[a] != a) {
+    parent_[a] = parent_[parent_[a]];  // path halving
+    a = parent_[a];
+  }
+  return a;
+}
+
+bool UnionFind::unite(int a, int b) {
+  a = find(a);
+  b = find(b);
+  if (a == b) return false;
+  if (rank_[a] < rank_[b]) std::swap(a, b);
+  parent_[b] = a;
+  if (rank_[a] == rank_[b]) ++rank_[a];
+  return true;
+}
+
+int Roadmap::addNode(const Eigen::VectorXd& q) {
+  nodes_.push_back(q);
+  adjacency_.emplace_back();
+  components_.resize(numNodes());
+  return numNodes() - 1;
+}
+
+void Roadmap::addEdge(int a, int b, double cost) {
+  adjacency_[a].push_back({b, cost});
+  adjacency_[b].push_back({a, cost});
+  components_.unite(a, b);
+  ++num_edges_;
+}
+
+void Roadmap::clear() {
+  nodes_.clear();
+  adjacency_.clear();
+  components_.resize(0);
+  num_edges_ = 0;
+}
+
+std::vector<int> Roadmap::shortestPath(int from, int to,
+                                       const std::function<double(int)>& heuristic) const {
+  const int n = numNodes();
+  std::vector<double> g(n, std::numeric_limits<double>::infinity());
+  std::vector<int> parent(n, -1);
+  std::vector<char> closed(n, 0);
+  using Entry = std::pair<double, int>;  // (f = g + h, node)
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  g[from] = 0;
+  open.emplace(heuristic(from), from);
+  while (!open.empty()) {
+    const int u = open.top().second;
+    open.pop();
+    if (closed[u]) continue;
+    closed[u] = 1;
+    if (u == to) break;
+    for (const Edge& e : adjacency_[u]) {
+      const double candidate = g[u] + e.cost;
+      if (candidate < g[e.to]) {
+        g[e.to] = candidate;
+        parent[e.to] = u;
+        open.emplace(candidate + heuristic(e.to), e.to);
+      }
+    }
+  }
+  if (!closed[to]) return {};
+  std::vector<int> path;
+  for (int v = to; v != -1; v = parent[v]) path.push_back(v);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+}  // namespace svmp::planners

@@ -1,0 +1,55 @@
+#pragma once
+// The roadmap shared by SVMP and the classical PRM: milestones, weighted undirected edges, union-find
+// over connected components, and A* search (Hart, Nilsson, Raphael 1968) with the metric as heuristic.
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+namespace svmp::planners {
+
+class UnionFind {
+ public:
+  explicit UnionFind(int n = 0) { resize(n); }
+  void resize(int n);
+  int find(int a);
+  // Returns false when a and b were already in one component.
+  bool unite(int a, int b);
+  bool same(int a, int b) { return find(a) == find(b); }
+  int size() const { return static_cast<int>(parent_.size()); }
+
+ private:
+  std::vector<int> parent_, rank_;
+};
+
+struct Edge {
+  int to;
+  double cost;
+};
+
+class Roadmap {
+ public:
+  // Adds a milestone; returns its index.
+  int addNode(const Eigen::VectorXd& q);
+  void addEdge(int a, int b, double cost);
+  void clear();
+
+  int numNodes() const { return static_cast<int>(nodes_.size()); }
+  int numEdges() const { return num_edges_; }
+  const Eigen::VectorXd& node(int i) const { return nodes_[i]; }
+  const std::vector<Eigen::VectorXd>& nodes() const { return nodes_; }
+  const std::vector<Edge>& neighbours(int i) const { return adjacency_[i]; }
+  UnionFind& components() { return components_; }
+  bool connected(int a, int b) { return components_.same(a, b); }
+
+  // Shortest path from `from` to `to` as node indices (empty when none). `heuristic(i)` must not
+  // overestimate the remaining cost to `to` (the metric distance does not).
+  std::vector<int> shortestPath(int from, int to, const std::function<double(int)>& heuristic) const;
+
+ private:
+  std::vector<Eigen::VectorXd> nodes_;
+  std::vector<std::vector<Edge>> adjacency_;
+  UnionFind components_;
+  int num_edges_ = 0;
+};
+
+}  // namespace svmp::planners

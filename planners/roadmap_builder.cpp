@@ -1,0 +1,53 @@
+#include "planners/roadmap_builder.hpp"
+
+namespace svmp::planners {
+
+void connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
+                       int k, int first) {
+  // Ask the tree for more than k so that k remain after dropping same-component neighbours.
+  const int search = std::min(nn.size(), 3 * k + 1);
+  for (int i = first; i < roadmap.numNodes(); ++i) {
+    int tried = 0;
+    for (int j : nn.nearest(roadmap.node(i), search)) {
+      if (tried >= k) break;
+      if (j == i || roadmap.connected(i, j)) continue;
+      ++tried;
+      if (context.validator.isValid(roadmap.node(i), roadmap.node(j)))
+        roadmap.addEdge(i, j, context.space.distance(roadmap.node(i), roadmap.node(j)));
+    }
+  }
+}
+
+QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
+                          const cspace::Query& query, int k) {
+  QueryOutcome out;
+  out.start_node = roadmap.addNode(query.start);
+  out.goal_node = roadmap.addNode(query.goal);
+  if (context.validator.isValid(query.start, query.goal))
+    roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
+  for (int endpoint : {out.start_node, out.goal_node}) {
+    int tried = 0;
+    for (int j : nn.nearest(roadmap.node(endpoint), std::min(nn.size(), 3 * k))) {
+      if (tried >= k) break;
+      if (roadmap.connected(endpoint, j)) continue;
+      ++tried;
+      if (context.validator.isValid(roadmap.node(endpoint), roadmap.node(j)))
+        roadmap.addEdge(endpoint, j, context.space.distance(roadmap.node(endpoint), roadmap.node(j)));
+    }
+  }
+  if (!roadmap.connected(out.start_node, out.goal_node)) return out;
+  const Eigen::VectorXd goal = query.goal;
+  const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {
+    return context.space.distance(roadmap.node(v), goal);
+  });
+  for (int v : nodes) out.path.push_back(roadmap.node(v));
+  return out;
+}
+
+double pathLength(const std::vector<Eigen::VectorXd>& path, const cspace::ConfigurationSpace& space) {
+  double length = 0;
+  for (size_t i = 1; i < path.size(); ++i) length += space.distance(path[i - 1], path[i]);
+  return length;
+}
+
+}  // namespace svmp::planners

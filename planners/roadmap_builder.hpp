@@ -1,0 +1,28 @@
+#pragma once
+// Roadmap construction and queries shared by SVMP (thesis ch. 3.3) and the classical PRM (Kavraki et al.
+// 1996): each milestone is connected to its k nearest milestones that lie in other connected components
+// (straight-line local planner at the scenario's resolution, union-find for components); a query
+// connects start and goal to their k nearest milestones and runs A* on the roadmap.
+#include "planners/nearest_neighbors.hpp"
+#include "planners/planner.hpp"
+#include "planners/roadmap.hpp"
+
+namespace svmp::planners {
+
+// Connects nodes [first, numNodes) of the roadmap; `nn` indexes the roadmap's nodes [0, nn.size()).
+void connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
+                       int k, int first = 0);
+
+struct QueryOutcome {
+  std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected
+  int start_node = -1, goal_node = -1;  // their indices in the query roadmap
+};
+
+// Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean),
+// connects each to its k nearest milestones and searches the path.
+QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
+                          const cspace::Query& query, int k);
+
+double pathLength(const std::vector<Eigen::VectorXd>& path, const cspace::ConfigurationSpace& space);
+
+}  // namespace svmp::planners

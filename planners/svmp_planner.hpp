@@ -1,0 +1,71 @@
+#pragma once
+// SVMP, the global SVM-based planner of the thesis (ch. 3-4), with the steps of its Planner class
+// (ch. 4.3.2): SampleObstacle (RRT-like trees inside each C-obstacle, Algorithm 1), TrainMultiSVM
+// (one-versus-rest RBF SVMs, per-class C, ch. 3.2 and 4.1.2), FindBoundaryMilestones (each boundary
+// sample descends its class's risk function R_k = |F_k| to the decision boundary; kept when
+// collision-free and not a near-duplicate), MakeRoadmap (k nearest in other components, union-find) and
+// Query (A*). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
+// disconnection are guided down to the decision boundaries and the roadmap is reconnected.
+// The roadmap answers many queries: build() once, query() many times; clear() forgets it.
+#include <optional>
+
+#include "cspace/obstacle_sampler.hpp"
+#include "planners/nearest_neighbors.hpp"
+#include "planners/planner.hpp"
+#include "planners/risk_function.hpp"
+#include "planners/roadmap.hpp"
+
+namespace svmp::planners {
+
+struct SvmpOptions {
+  double sigma = 0.1;             // RBF width in the weighted metric, gamma = 1/(2 sigma^2)
+  double C = 100;                 // penalty; obstacle weights scale it per class
+  double step = 0.05;             // obstacle sampling step
+  int samples_per_tree = 200;
+  int k = 10;                     // roadmap neighbours
+  double eps = 1e-3;              // SMO stopping tolerance
+  double cache_mb = 100;
+  bool truncated = true;          // exp(-5)-truncated evaluation of F
+  DescentOptions descent;         // max_step defaults to sigma when not set
+  double duplicate_radius = -1;   // milestones closer than this are merged; < 0: step / 2
+  int repair_rounds = 5;          // query repair rounds (0 disables)
+  int repair_samples = 100;       // random configurations per repair round
+};
+
+class SvmpPlanner final : public Planner {
+ public:
+  SvmpPlanner(const PlanningContext& context, SvmpOptions options);
+  std::string name() const override { return "svmp"; }
+  void clear() override;
+  PlanResult solve(const cspace::Query& query, std::uint64_t seed) override;
+
+  // The steps, callable one by one; each adds its time to `times`. Throw std::invalid_argument when
+  // called out of order or when obstacle sampling yields fewer than two classes.
+  void sampleObstacle(std::uint64_t seed, PhaseTimes& times);
+  void trainMultiSvm(PhaseTimes& times);
+  void findBoundaryMilestones(PhaseTimes& times);
+  void makeRoadmap(PhaseTimes& times);
+  // Answers a query on the current roadmap (repairing it when needed); does not clear it.
+  PlanResult query(const cspace::Query& query, std::uint64_t seed);
+
+  const cspace::ObstacleSamples& samples() const { return samples_; }
+  const RiskFunction* risk() const { return risk_ ? &*risk_ : nullptr; }
+  const Roadmap& roadmap() const { return roadmap_; }
+  int supportVectors() const;
+  const SvmpOptions& options() const { return options_; }
+
+ private:
+  // Descends each start point on the risk of its class (or, with class -1, of the nearest boundary)
+  // and adds the collision-free, non-duplicate results as milestones. Returns how many were added.
+  int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes);
+  bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng);
+
+  PlanningContext context_;
+  SvmpOptions options_;
+  cspace::ObstacleSamples samples_;
+  std::optional<RiskFunction> risk_;
+  Roadmap roadmap_;
+  std::optional<NearestNeighbors> nn_;
+};
+
+}  // namespace svmp::planners
