@@ -1,0 +1,116 @@
+#include "svm/kernel_cache.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <utility>
+
+namespace svmp::svm {
+
+KernelCache::KernelCache(int n, double size_mb) : columns_(n) {
+  const long long floats = static_cast<long long>(size_mb * 1024.0 * 1024.0 / sizeof(float));
+  capacity_ = std::max(floats, 2LL * n);
+  free_ = capacity_;
+}
+
+void KernelCache::unlink(int i) {
+  Column& c = columns_[i];
+  if (c.prev >= 0) columns_[c.prev].next = c.next; else oldest_ = c.next;
+  if (c.next >= 0) columns_[c.next].prev = c.prev; else newest_ = c.prev;
+  c.prev = c.next = -1;
+}
+
+void KernelCache::linkNewest(int i) {
+  Column& c = columns_[i];
+  c.prev = newest_;
+  c.next = -1;
+  if (newest_ >= 0) columns_[newest_].next = i; else oldest_ = i;
+  newest_ = i;
+}
+
+void KernelCache::evict(int i) {
+  unlink(i);
+  free_ += columns_[i].len;
+  columns_[i].data.reset();
+  columns_[i].len = 0;
+}
+
+float* KernelCache::request(int i, int len, int* filled) {
+  Column& c = columns_[i];
+  if (c.len > 0) unlink(i);
+  if (len > c.len) {
+    ++misses_;
+    const long long more = len - c.len;
+    while (free_ < more && oldest_ >= 0) evict(oldest_);
+    std::unique_ptr<float[]> grown(new float[len]);
+    if (c.len > 0) std::memcpy(grown.get(), c.data.get(), sizeof(float) * c.len);
+    c.data = std::move(grown);
+    free_ -= more;
+    *filled = c.len;
+    c.len = len;
+  } else {
+    ++hits_;
+    *filled = len;
+  }
+  linkNewest(i);
+  return c.data.get();
+}
+
+void KernelCache::swapIndex(int i, int j) {
+  if (i == j) return;
+  const bool i_cached = columns_[i].len > 0;
+  const bool j_cached = columns_[j].len > 0;
+  if (i_cached) unlink(i);
+  if (j_cached) unlink(j);
+  std::swap(columns_[i].data, columns_[j].data);
+  std::swap(columns_[i].len, columns_[j].len);
+  if (columns_[i].len > 0) linkNewest(i);
+  if (columns_[j].len > 0) linkNewest(j);
+  if (i > j) std::swap(i, j);
+  // Entries i and j of every cached column trade places; a column that reaches i but not j
+  // cannot hold the moved entry and is dropped.
+  for (int h = oldest_; h >= 0;) {
+    const int next = columns_[h].next;
+    Column& c = columns_[h];
+    if (c.len > i) {
+      if (c.len > j) std::swap(c.data[i], c.data[j]);
+      else evict(h);
+    }
+    h = next;
+  }
+}
+
+}  // namespace svmp::svm
+
+namespace svmp::svm {
+
+void KernelCache::swapIndices(const std::vector<std::pair<int, int>>& swaps) {
+  for (auto [i, j] : swaps) {
+    if (i == j) continue;
+    const bool i_cached = columns_[i].len > 0;
+    const bool j_cached = columns_[j].len > 0;
+    if (i_cached) unlink(i);
+    if (j_cached) unlink(j);
+    std::swap(columns_[i].data, columns_[j].data);
+    std::swap(columns_[i].len, columns_[j].len);
+    if (columns_[i].len > 0) linkNewest(i);
+    if (columns_[j].len > 0) linkNewest(j);
+  }
+  for (int h = oldest_; h >= 0;) {
+    const int next = columns_[h].next;
+    Column& c = columns_[h];
+    float* data = c.data.get();
+    for (auto [i, j] : swaps) {
+      const int lo = std::min(i, j), hi = std::max(i, j);
+      if (c.len <= lo || lo == hi) continue;
+      if (c.len > hi) {
+        std::swap(data[lo], data[hi]);
+      } else {
+        evict(h);
+        break;
+      }
+    }
+    h = next;
+  }
+}
+
+}  // namespace svmp::svm

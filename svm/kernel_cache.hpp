@@ -1,0 +1,54 @@
+// Least-recently-used cache of kernel columns in float storage, with a size limit in MB.
+//
+// Same policy as libsvm's Cache (Chang & Lin, "LIBSVM: a library for support vector machines",
+// ACM TIST 2011, sec. 5.1): a column is kept with the length it was last requested at (the active
+// set size under shrinking) and extended on demand; swapIndex() follows the solver's permutation.
+// Float halves the memory per entry, so twice as many columns fit; the solver accumulates in double.
+// Not thread-safe: one cache per solver.
+#pragma once
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace svmp::svm {
+
+class KernelCache {
+ public:
+  // Holds at least two full columns whatever size_mb says (SMO needs columns i and j together).
+  KernelCache(int n, double size_mb);
+
+  // Column i with at least len entries. Entries [*filled, len) are not yet computed: the caller
+  // fills them. The pointer stays valid until the next request() or swapIndex().
+  float* request(int i, int len, int* filled);
+
+  void swapIndex(int i, int j);
+  // Same as swapIndex for each pair in order, but visits each cached column once: shrinking swaps
+  // thousands of pairs at a time, and a column-major pass keeps each column in cache.
+  void swapIndices(const std::vector<std::pair<int, int>>& swaps);
+
+  long long capacityFloats() const { return capacity_; }
+  long long hits() const { return hits_; }
+  long long misses() const { return misses_; }
+
+ private:
+  struct Column {
+    std::unique_ptr<float[]> data;
+    int len = 0;
+    int prev = -1;
+    int next = -1;
+  };
+  void unlink(int i);
+  void linkNewest(int i);
+  void evict(int i);
+
+  std::vector<Column> columns_;
+  int oldest_ = -1;  // LRU list head
+  int newest_ = -1;  // LRU list tail
+  long long capacity_;
+  long long free_;
+  long long hits_ = 0;
+  long long misses_ = 0;
+};
+
+}  // namespace svmp::svm

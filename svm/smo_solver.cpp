@@ -1,0 +1,476 @@
+#include "svm/smo_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "svm/kernel_cache.hpp"
+#include "svm/kernel_column.hpp"
+#include "svm/simd.hpp"
+
+namespace svmp::svm {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kTau = 1e-12;  // libsvm's TAU: curvature used when k_ii + k_jj - 2k_ij <= 0
+
+[[noreturn]] void fail(const std::string& what) {
+  throw std::invalid_argument("solveBinary: " + what);
+}
+
+void validateProblem(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const Eigen::VectorXd& C,
+                     const Kernel& kernel, const SolverOptions& opt) {
+  std::ostringstream msg;
+  if (X.cols() == 0) fail("no samples (X has 0 columns)");
+  if (X.rows() == 0) fail("samples have dimension 0");
+  if (y.size() != X.cols()) {
+    msg << "y has " << y.size() << " labels but X has " << X.cols() << " samples";
+    fail(msg.str());
+  }
+  if (C.size() != X.cols()) {
+    msg << "C has " << C.size() << " entries but X has " << X.cols() << " samples";
+    fail(msg.str());
+  }
+  if (X.cols() > std::numeric_limits<int>::max() / 2) fail("too many samples");
+  if (!X.allFinite()) fail("X contains NaN or Inf");
+  bool has_pos = false, has_neg = false;
+  for (Eigen::Index i = 0; i < y.size(); ++i) {
+    if (y[i] == 1.0) has_pos = true;
+    else if (y[i] == -1.0) has_neg = true;
+    else {
+      msg << "label y[" << i << "] = " << y[i] << "; labels must be +1 or -1";
+      fail(msg.str());
+    }
+    if (!(C[i] > 0.0) || !std::isfinite(C[i])) {
+      msg << "C[" << i << "] = " << C[i] << "; C must be positive and finite";
+      fail(msg.str());
+    }
+  }
+  if (!has_neg) fail("labels contain only class +1; need both classes");
+  if (!has_pos) fail("labels contain only class -1; need both classes");
+  if (const std::string k = kernel.validate(static_cast<int>(X.rows())); !k.empty()) fail(k);
+  if (const std::string o = opt.validate(); !o.empty()) fail(o);
+}
+
+// Solver state in the shrinking permutation: samples [0, active_) are active.
+class SmoSolver {
+ public:
+  SmoSolver(KernelColumns& data, const Eigen::VectorXd& y, const Eigen::VectorXd& C,
+            const SolverOptions& opt)
+      : data_(data),
+        opt_(opt),
+        n_(data.size()),
+        active_(n_),
+        cache_(n_, opt.cache_mb),
+        y_(y.data(), y.data() + n_),
+        C_(C.data(), C.data() + n_),
+        alpha_(n_, 0.0),
+        G_(n_, -1.0),
+        G_bar_(n_, 0.0),
+        scratch_(n_),
+        up_penalty_(n_),
+        low_penalty_(n_),
+        index_(n_) {
+    for (int i = 0; i < n_; ++i) index_[i] = i;
+  }
+
+  void setStart(const Eigen::VectorXd& alpha, const Eigen::VectorXd& G, const Eigen::VectorXd& Gb) {
+    for (int i = 0; i < n_; ++i) {
+      alpha_[i] = alpha[i];
+      G_[i] = G[i];
+      G_bar_[i] = Gb[i];
+    }
+  }
+
+  SolverResult run();
+
+ private:
+  bool isUpper(int i) const { return alpha_[i] >= C_[i]; }
+  bool isLower(int i) const { return alpha_[i] <= 0.0; }
+  bool isFree(int i) const { return !isUpper(i) && !isLower(i); }
+  bool inUp(int i) const { return y_[i] > 0 ? !isUpper(i) : !isLower(i); }
+  bool inLow(int i) const { return y_[i] > 0 ? !isLower(i) : !isUpper(i); }
+  void updateMasks(int i) {
+    up_penalty_[i] = inUp(i) ? 0.0 : -kInf;
+    low_penalty_[i] = inLow(i) ? 0.0 : kInf;
+  }
+
+  const float* column(int i, int len) {
+    int filled = 0;
+    float* col = cache_.request(i, len, &filled);
+    if (filled < len) data_.column(i, filled, len, col + filled);
+    return col;
+  }
+
+  bool selectWorkingSet(int& out_i, int& out_j);
+  void update(int i, int j);
+  void shrink();
+  void reconstructGradient();
+  bool beShrunk(int i, double gmax1, double gmax2) const;
+  void swapIndex(int i, int j);  // everything but the cache; see shrink()
+  double bias() const;
+  double violation() const;
+
+  KernelColumns& data_;
+  const SolverOptions& opt_;
+  int n_;
+  int active_;
+  bool unshrink_ = false;
+  KernelCache cache_;
+  std::vector<double> y_, C_, alpha_, G_, G_bar_, scratch_;
+  // I_up / I_low (Keerthi et al.) as additive penalties: 0 when in the set, -inf / +inf when not.
+  std::vector<double> up_penalty_, low_penalty_;
+  std::vector<int> index_;  // original index of each position
+  std::vector<std::pair<int, int>> swaps_;
+};
+
+bool SmoSolver::selectWorkingSet(int& out_i, int& out_j) {
+  const int m = active_;
+  const double* y = y_.data();
+  const double* G = G_.data();
+  const double* up = up_penalty_.data();
+  const double* low = low_penalty_.data();
+  double* s = scratch_.data();
+
+  // i = argmax_{t in I_up} -y_t G_t. Masks are additive penalties (0 or -inf) so the loops are
+  // branch-free; the argmax is found by a second scan for the maximum value.
+  using simd::Vd;
+  Vd vmax = simd::broadcast(-kInf);
+  int t = 0;
+  for (; t + simd::kLanes <= m; t += simd::kLanes) {
+    const Vd v = simd::load(up + t) - simd::load(y + t) * simd::load(G + t);
+    simd::store(s + t, v);
+    vmax = simd::max(vmax, v);
+  }
+  double gmax = simd::hmax(vmax);
+  for (; t < m; ++t) {
+    s[t] = up[t] - y[t] * G[t];
+    gmax = s[t] > gmax ? s[t] : gmax;
+  }
+  if (gmax == -kInf) return false;
+  int i = 0;
+  while (s[i] != gmax) ++i;
+
+  // j = argmin over t in I_low with y_t G_t > -gmax of -(gmax + y_t G_t)^2 / curvature (WSS2)
+  const float* Ki = column(i, m);
+  const double* diag = data_.diagonalData();
+  const double kii = data_.diagonal(i);
+  auto objective = [&](auto yg, auto lowp, auto dg, auto kit, auto inf, auto tau, auto zero) {
+    const auto diff = gmax + yg;
+    auto quad = kii + dg - 2.0 * kit;
+    quad = quad > zero ? quad : tau;
+    auto obj = -(diff * diff) / quad;
+    obj = diff > zero ? obj : inf;
+    return obj + lowp;  // lowp is 0 or +inf
+  };
+  Vd vmax2 = simd::broadcast(-kInf), vmin = simd::broadcast(kInf);
+  const Vd vinf = simd::broadcast(kInf), vtau = simd::broadcast(kTau), vzero = simd::broadcast(0);
+  t = 0;
+  for (; t + simd::kLanes <= m; t += simd::kLanes) {
+    const Vd yg = simd::load(y + t) * simd::load(G + t);
+    const Vd lowp = simd::load(low + t);
+    vmax2 = simd::max(vmax2, yg - lowp);
+    const Vd obj = objective(yg, lowp, simd::load(diag + t), simd::load(Ki + t), vinf, vtau, vzero);
+    simd::store(s + t, obj);
+    vmin = simd::min(vmin, obj);
+  }
+  double gmax2 = simd::hmax(vmax2), obj_min = simd::hmin(vmin);
+  for (; t < m; ++t) {
+    const double yg = y[t] * G[t];
+    gmax2 = std::max(gmax2, yg - low[t]);
+    s[t] = objective(yg, low[t], diag[t], static_cast<double>(Ki[t]), kInf, kTau, 0.0);
+    obj_min = std::min(obj_min, s[t]);
+  }
+  if (gmax + gmax2 < opt_.eps || obj_min == kInf) return false;
+  int j = 0;
+  while (s[j] != obj_min) ++j;
+  out_i = i;
+  out_j = j;
+  return true;
+}
+
+void SmoSolver::update(int i, int j) {
+  const float* Ki = column(i, active_);
+  const float* Kj = column(j, active_);  // the cache keeps >= 2 columns, so Ki stays valid
+  const double Ci = C_[i], Cj = C_[j];
+  const double old_ai = alpha_[i], old_aj = alpha_[j];
+  const double kij = Ki[j];
+  double& ai = alpha_[i];
+  double& aj = alpha_[j];
+  // Two-variable subproblem, clipped to the box along the constraint line (libsvm's update).
+  if (y_[i] != y_[j]) {
+    double quad = data_.diagonal(i) + data_.diagonal(j) - 2.0 * kij;
+    if (quad <= 0) quad = kTau;
+    const double delta = (-G_[i] - G_[j]) / quad;
+    const double diff = ai - aj;
+    ai += delta;
+    aj += delta;
+    if (diff > 0) {
+      if (aj < 0) { aj = 0; ai = diff; }
+    } else {
+      if (ai < 0) { ai = 0; aj = -diff; }
+    }
+    if (diff > Ci - Cj) {
+      if (ai > Ci) { ai = Ci; aj = Ci - diff; }
+    } else {
+      if (aj > Cj) { aj = Cj; ai = Cj + diff; }
+    }
+  } else {
+    double quad = data_.diagonal(i) + data_.diagonal(j) - 2.0 * kij;
+    if (quad <= 0) quad = kTau;
+    const double delta = (G_[i] - G_[j]) / quad;
+    const double sum = ai + aj;
+    ai -= delta;
+    aj += delta;
+    if (sum > Ci) {
+      if (ai > Ci) { ai = Ci; aj = sum - Ci; }
+    } else {
+      if (aj < 0) { aj = 0; ai = sum; }
+    }
+    if (sum > Cj) {
+      if (aj > Cj) { aj = Cj; ai = sum - Cj; }
+    } else {
+      if (ai < 0) { ai = 0; aj = sum; }
+    }
+  }
+  // G_t += Q_ti dA_i + Q_tj dA_j with Q_ti = y_t y_i K_ti.
+  const double wi = y_[i] * (ai - old_ai);
+  const double wj = y_[j] * (aj - old_aj);
+  double* G = G_.data();
+  const double* y = y_.data();
+  const int m = active_;
+#pragma omp simd
+  for (int t = 0; t < m; ++t)
+    G[t] += y[t] * (wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]));
+
+  const bool was_upper_i = old_ai >= Ci, was_upper_j = old_aj >= Cj;
+  updateMasks(i);
+  updateMasks(j);
+  // G_bar changes when a multiplier enters or leaves its upper bound; needs the full column.
+  for (int k : {i, j}) {
+    const bool was_upper = (k == i) ? was_upper_i : was_upper_j;
+    if (was_upper == isUpper(k)) continue;
+    const float* Kk = column(k, n_);
+    const double w = (was_upper ? -C_[k] : C_[k]) * y_[k];
+    double* Gb = G_bar_.data();
+#pragma omp simd
+    for (int t = 0; t < n_; ++t) Gb[t] += w * y[t] * static_cast<double>(Kk[t]);
+  }
+}
+
+bool SmoSolver::beShrunk(int i, double gmax1, double gmax2) const {
+  if (isUpper(i)) return y_[i] > 0 ? -G_[i] > gmax1 : -G_[i] > gmax2;
+  if (isLower(i)) return y_[i] > 0 ? G_[i] > gmax2 : G_[i] > gmax1;
+  return false;
+}
+
+void SmoSolver::shrink() {
+  // gmax1 = max_{I_up} -y G, gmax2 = max_{I_low} y G  (libsvm's do_shrinking)
+  double gmax1 = -kInf, gmax2 = -kInf;
+  for (int t = 0; t < active_; ++t) {
+    const double yg = y_[t] * G_[t];
+    if (inUp(t)) gmax1 = std::max(gmax1, -yg);
+    if (inLow(t)) gmax2 = std::max(gmax2, yg);
+  }
+  if (!unshrink_ && gmax1 + gmax2 <= opt_.eps * 10) {
+    unshrink_ = true;
+    reconstructGradient();
+    active_ = n_;
+  }
+  swaps_.clear();
+  for (int i = 0; i < active_; ++i) {
+    if (!beShrunk(i, gmax1, gmax2)) continue;
+    --active_;
+    while (active_ > i) {
+      if (!beShrunk(active_, gmax1, gmax2)) {
+        swapIndex(i, active_);
+        swaps_.emplace_back(i, active_);
+        break;
+      }
+      --active_;
+    }
+  }
+  cache_.swapIndices(swaps_);
+}
+
+void SmoSolver::reconstructGradient() {
+  if (active_ == n_) return;
+  for (int t = active_; t < n_; ++t) G_[t] = G_bar_[t] - 1.0;
+  // w_j = y_j alpha_j for free j (bounded ones are in G_bar already)
+  int free_count = 0;
+  for (int j = 0; j < active_; ++j) {
+    const bool f = isFree(j);
+    scratch_[j] = f ? y_[j] * alpha_[j] : 0.0;
+    free_count += f;
+  }
+  const double* w = scratch_.data();
+  if (static_cast<double>(free_count) * n_ > 2.0 * active_ * (n_ - active_)) {
+    for (int i = active_; i < n_; ++i) {
+      const float* Ki = column(i, active_);
+      double sum = 0.0;
+#pragma omp simd reduction(+ : sum)
+      for (int j = 0; j < active_; ++j) sum += w[j] * static_cast<double>(Ki[j]);
+      G_[i] += y_[i] * sum;
+    }
+  } else {
+    for (int i = 0; i < active_; ++i) {
+      if (w[i] == 0.0) continue;
+      const float* Ki = column(i, n_);
+      const double wi = w[i];
+      for (int t = active_; t < n_; ++t) G_[t] += y_[t] * wi * static_cast<double>(Ki[t]);
+    }
+  }
+}
+
+void SmoSolver::swapIndex(int i, int j) {
+  if (i == j) return;
+  data_.swap(i, j);
+  std::swap(y_[i], y_[j]);
+  std::swap(C_[i], C_[j]);
+  std::swap(alpha_[i], alpha_[j]);
+  std::swap(G_[i], G_[j]);
+  std::swap(G_bar_[i], G_bar_[j]);
+  std::swap(up_penalty_[i], up_penalty_[j]);
+  std::swap(low_penalty_[i], low_penalty_[j]);
+  std::swap(index_[i], index_[j]);
+}
+
+double SmoSolver::bias() const {
+  // libsvm's calculate_rho: average of y G over free multipliers, else midpoint of the feasible
+  // interval; bias = -rho.
+  double ub = kInf, lb = -kInf, sum_free = 0.0;
+  int nr_free = 0;
+  for (int i = 0; i < active_; ++i) {
+    const double yg = y_[i] * G_[i];
+    if (isUpper(i)) {
+      if (y_[i] < 0) ub = std::min(ub, yg); else lb = std::max(lb, yg);
+    } else if (isLower(i)) {
+      if (y_[i] > 0) ub = std::min(ub, yg); else lb = std::max(lb, yg);
+    } else {
+      ++nr_free;
+      sum_free += yg;
+    }
+  }
+  const double rho = nr_free > 0 ? sum_free / nr_free : (ub + lb) / 2;
+  return -rho;
+}
+
+double SmoSolver::violation() const {
+  double m_up = -kInf, m_low = -kInf;
+  for (int t = 0; t < n_; ++t) {
+    const double yg = y_[t] * G_[t];
+    if (inUp(t)) m_up = std::max(m_up, -yg);
+    if (inLow(t)) m_low = std::max(m_low, yg);
+  }
+  return m_up + m_low;
+}
+
+SolverResult SmoSolver::run() {
+  for (int i = 0; i < n_; ++i) updateMasks(i);
+  SolverResult result;
+  long iter = 0;
+  int counter = std::min(n_, 1000) + 1;
+  result.status = SolverStatus::kOptimal;
+  while (true) {
+    if (iter >= opt_.max_iterations) {
+      result.status = SolverStatus::kIterationLimit;
+      break;
+    }
+    if (--counter == 0) {
+      counter = std::min(n_, 1000);
+      if (opt_.shrinking) shrink();
+    }
+    int i = -1, j = -1;
+    if (!selectWorkingSet(i, j)) {
+      // Optimal on the active set: check again on all samples.
+      reconstructGradient();
+      active_ = n_;
+      if (!selectWorkingSet(i, j)) break;
+      counter = 1;  // shrink at the next iteration
+    }
+    ++iter;
+    update(i, j);
+  }
+  if (active_ < n_) {
+    reconstructGradient();
+    active_ = n_;
+  }
+  result.iterations = iter;
+  result.bias = bias();
+  result.violation = violation();
+  result.alpha.resize(n_);
+  result.gradient.resize(n_);
+  result.gradient_bound.resize(n_);
+  double v = 0.0;
+  for (int t = 0; t < n_; ++t) {
+    v += alpha_[t] * (G_[t] - 1.0);
+    const int o = index_[t];
+    result.alpha[o] = alpha_[t];
+    result.gradient[o] = G_[t];
+    result.gradient_bound[o] = G_bar_[t];
+    if (alpha_[t] > 0) ++result.support_vectors;
+    if (isUpper(t)) ++result.bounded_support_vectors;
+  }
+  result.objective = 0.5 * v;
+  result.cache_hits = cache_.hits();
+  result.cache_misses = cache_.misses();
+  return result;
+}
+
+}  // namespace
+
+std::string SolverOptions::validate() const {
+  std::ostringstream msg;
+  if (!(eps > 0.0) || !std::isfinite(eps)) msg << "eps must be positive and finite, got " << eps;
+  else if (max_iterations <= 0) msg << "max_iterations must be positive, got " << max_iterations;
+  else if (!(cache_mb >= 0.0) || !std::isfinite(cache_mb))
+    msg << "cache_mb must be >= 0 and finite, got " << cache_mb;
+  else if (threads < 1) msg << "threads must be >= 1, got " << threads;
+  return msg.str();
+}
+
+std::string SolverResult::report() const {
+  std::ostringstream msg;
+  msg << (status == SolverStatus::kOptimal ? "optimal" : "iteration limit") << ", iterations "
+      << iterations << ", objective " << objective << ", bias " << bias << ", violation "
+      << violation << ", SV " << support_vectors << " (bounded " << bounded_support_vectors
+      << "), cache hits " << cache_hits << " misses " << cache_misses;
+  return msg.str();
+}
+
+SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
+                         const Eigen::VectorXd& C, const Kernel& kernel,
+                         const SolverOptions& opt, const WarmStart* warm) {
+  validateProblem(X, y, C, kernel, opt);
+  KernelColumns data(X, kernel, opt.threads);
+  SmoSolver solver(data, y, C, opt);
+  WarmStartCounts counts;
+  if (warm != nullptr) {
+    if (const std::string w = warm->validate(X.cols(), X.rows()); !w.empty()) fail(w);
+    Eigen::VectorXd alpha, G, G_bar;
+    counts = detail::initialiseFromWarmStart(*warm, X, y, C, data, alpha, G, G_bar);
+    solver.setStart(alpha, G, G_bar);
+  }
+  SolverResult result = solver.run();
+  result.warm = counts;
+  return result;
+}
+
+WarmStart makeWarmStart(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
+                        const Eigen::VectorXd& C, const SolverResult& previous,
+                        std::vector<Eigen::Index> previous_index) {
+  WarmStart w;
+  w.X = X;
+  w.y = y;
+  w.C = C;
+  w.alpha = previous.alpha;
+  w.gradient = previous.gradient;
+  w.gradient_bound = previous.gradient_bound;
+  w.previous_index = std::move(previous_index);
+  return w;
+}
+
+}  // namespace svmp::svm

@@ -1,0 +1,127 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "svm/model.hpp"
+#include "svm/truncated_evaluator.hpp"
+#include "tests/svm/ball_problems.hpp"
+
+namespace svmp::svm {
+namespace {
+
+// Brute-force sum of the same truncated terms (d^2 < 5/gamma, distance summed in coordinate
+// order like nanoflann's L2_Simple_Adaptor so the same terms are kept). scale/grad_scale: sums of
+// the absolute terms, the size of the rounding of any summation order.
+double bruteTruncated(const BinaryModel& m, const double* q, double* grad, double* scale = nullptr,
+                      double* grad_scale = nullptr) {
+  double s1 = 0, s2 = 0;
+  const double gamma = m.kernel().gamma, r2 = 5.0 / gamma;
+  double f = m.bias();
+  for (int k = 0; k < m.dim(); ++k) grad[k] = 0;
+  for (int s = 0; s < m.numSupportVectors(); ++s) {
+    const double* x = m.supportVectors().col(s).data();
+    double dist = 0;
+    for (int k = 0; k < m.dim(); ++k) {
+      const double diff = q[k] - x[k];
+      dist += diff * diff;
+    }
+    if (!(dist < r2)) continue;
+    const double term = m.coefficients()[s] * std::exp(-gamma * dist);
+    f += term;
+    s1 += std::abs(term);
+    double largest = 0;
+    for (int k = 0; k < m.dim(); ++k) {
+      grad[k] += 2 * gamma * term * (x[k] - q[k]);
+      largest = std::max(largest, std::abs(x[k] - q[k]));
+    }
+    s2 += 2 * gamma * std::abs(term) * largest;
+  }
+  if (scale) *scale = s1;
+  if (grad_scale) *grad_scale = s2;
+  return f;
+}
+
+BinaryModel trainedModel(int d, int n, unsigned long long seed) {
+  const auto p = testing::makeBallProblem(d, n, 3, seed);
+  const Eigen::VectorXd y = p.binary();
+  const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
+  const SolverResult r = solveBinary(p.X, y, Eigen::VectorXd::Constant(n, 10.0), k, {});
+  return BinaryModel::fromSolution(p.X, y, r, k);
+}
+
+TEST(TruncatedRbfEvaluator, MatchesBruteForceAndBoundsTheFullSum) {
+  for (int d : {2, 6}) {
+    const BinaryModel m = trainedModel(d, 4000, 50 + d);
+    const TruncatedRbfEvaluator ev(m);
+    EXPECT_NEAR(ev.truncationBound(), m.coefficients().cwiseAbs().sum() * std::exp(-5.0), 1e-12);
+    const auto p = testing::makeBallProblem(d, 4000, 3, 50 + d);
+    const Eigen::MatrixXd Q = testing::nearQueries(p.X, 2000, p.ball_radius / 4, 3);
+    const double scale = m.coefficients().cwiseAbs().sum();
+    double worst_full = 0;
+    for (int s = 0; s < Q.cols(); ++s) {
+      std::vector<double> g(d), gb(d), gf(d);
+      const double f = ev.decisionAndGradient(Q.col(s).data(), g.data());
+      double fscale = 0, gscale = 0;
+      const double fb = bruteTruncated(m, Q.col(s).data(), gb.data(), &fscale, &gscale);
+      EXPECT_NEAR(f, ev.decision(Q.col(s).data()), 1e-12 * scale);
+      // 1e-12 relative to the summed magnitudes: the two sums add the same terms in other orders.
+      EXPECT_NEAR(f, fb, 1e-12 * std::max(1.0, fscale));
+      for (int k = 0; k < d; ++k) EXPECT_NEAR(g[k], gb[k], 1e-12 * std::max(1.0, gscale));
+      const double full = m.decisionAndGradient(Q.col(s).data(), gf.data());
+      worst_full = std::max(worst_full, std::abs(full - f));
+    }
+    EXPECT_LE(worst_full, ev.truncationBound());
+  }
+}
+
+TEST(TruncatedRbfEvaluator, ConstEvaluationIsThreadSafe) {
+  const BinaryModel m = trainedModel(6, 3000, 61);
+  const TruncatedRbfEvaluator ev(m);
+  const auto p = testing::makeBallProblem(6, 3000, 3, 61);
+  const Eigen::MatrixXd Q = testing::nearQueries(p.X, 4000, 0.05, 9);
+  std::vector<double> serial(Q.cols()), parallel(Q.cols());
+  for (int s = 0; s < Q.cols(); ++s) {
+    double g[6];
+    serial[s] = ev.decisionAndGradient(Q.col(s).data(), g) + g[0];
+  }
+#pragma omp parallel for num_threads(2)
+  for (int s = 0; s < Q.cols(); ++s) {
+    double g[6];
+    parallel[s] = ev.decisionAndGradient(Q.col(s).data(), g) + g[0];
+  }
+  EXPECT_EQ(serial, parallel);
+}
+
+TEST(TruncatedRbfEvaluator, SurvivesTheModelAndMoves) {
+  std::unique_ptr<TruncatedRbfEvaluator> ev;
+  Eigen::VectorXd q = Eigen::VectorXd::Constant(2, 0.5);
+  double expected;
+  {
+    const BinaryModel m = trainedModel(2, 1000, 70);
+    ev = std::make_unique<TruncatedRbfEvaluator>(m);
+    expected = ev->decision(q.data());
+  }
+  TruncatedRbfEvaluator moved = std::move(*ev);
+  ev.reset();
+  EXPECT_EQ(moved.decision(q.data()), expected);
+}
+
+TEST(TruncatedRbfEvaluator, RejectsNonRbfKernels) {
+  Kernel lin;
+  lin.type = KernelType::kLinear;
+  const BinaryModel m(Eigen::MatrixXd::Ones(2, 3), Eigen::VectorXd::Ones(3), 0.0, lin);
+  try {
+    TruncatedRbfEvaluator ev(m);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("RBF"), std::string::npos);
+  }
+  const BinaryModel b(Eigen::MatrixXd::Ones(2, 3), Eigen::VectorXd::Ones(3), 0.0,
+                      Kernel::blockSum(Kernel::rbfFromSigma(1), 1));
+  EXPECT_THROW(TruncatedRbfEvaluator{b}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace svmp::svm

@@ -1,0 +1,72 @@
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "svm/one_vs_rest.hpp"
+#include "tests/svm/ball_problems.hpp"
+#include "tests/svm/test_helpers.hpp"
+#ifdef SVMP_HAVE_LIBSVM
+#include "tests/svm/libsvm_oracle.hpp"
+#endif
+
+namespace svmp::svm {
+namespace {
+
+TEST(OneVsRest, MatchesSeparateBinaryProblemsAndThreadCounts) {
+  const auto p = testing::makeBallProblem(3, 2500, 3, 31);
+  const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
+  const std::map<int, double> w = {{1, 2.0}, {3, 0.5}};
+  const OneVsRestModel one = trainOneVsRest(p.X, p.labels, k, 5.0, w, {}, 1);
+  const OneVsRestModel two = trainOneVsRest(p.X, p.labels, k, 5.0, w, {}, 2);
+  ASSERT_EQ(one.classes, (std::vector<int>{1, 2, 3}));
+  for (int c = 0; c < 3; ++c) {
+    Eigen::VectorXd y, C;
+    oneVsRestProblem(p.labels, one.classes[c], 5.0, w, y, C);
+    EXPECT_EQ(C[0], 10.0);  // sample 0 is class 1
+    const SolverResult r = solveBinary(p.X, y, C, k, {});
+    EXPECT_NEAR(one.solutions[c].objective, r.objective, 1e-9 * std::abs(r.objective));
+    EXPECT_NEAR(two.solutions[c].objective, r.objective, 1e-9 * std::abs(r.objective));
+    EXPECT_EQ(one.models[c].numSupportVectors(), r.support_vectors);
+  }
+}
+
+TEST(OneVsRest, BadInputThrows) {
+  const auto p = testing::makeBallProblem(2, 100, 3, 1);
+  const Kernel k = Kernel::rbfFromSigma(0.1);
+  EXPECT_THROW(trainOneVsRest(p.X, std::vector<int>(100, 1), k, 1.0, {}, {}, 1),
+               std::invalid_argument);
+  EXPECT_THROW(trainOneVsRest(p.X, std::vector<int>(99, 1), k, 1.0, {}, {}, 1),
+               std::invalid_argument);
+  EXPECT_THROW(trainOneVsRest(p.X, p.labels, k, -1.0, {}, {}, 1), std::invalid_argument);
+  EXPECT_THROW(trainOneVsRest(p.X, p.labels, k, 1.0, {{2, 0.0}}, {}, 1), std::invalid_argument);
+}
+
+#ifdef SVMP_HAVE_LIBSVM
+// libsvm has per-class weights only, so a weighted OvR problem is a libsvm problem when the
+// "rest" classes share one weight: weights {class 1: 2.5} make problem 1 expressible (C+ = 2.5C,
+// C- = C); the unweighted problems are checked for every class.
+TEST(OneVsRestVsLibsvm, MatchesSeparateLibsvmRuns) {
+  const auto p = testing::makeBallProblem(6, 3000, 3, 32);
+  const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
+  const double C = 10.0;
+  for (const std::map<int, double>& w : {std::map<int, double>{}, std::map<int, double>{{1, 2.5}}}) {
+    const OneVsRestModel ovr = trainOneVsRest(p.X, p.labels, k, C, w, {}, 2);
+    for (int c = 0; c < 3; ++c) {
+      if (!w.empty() && ovr.classes[c] != 1) continue;
+      Eigen::VectorXd y, sample_C;
+      oneVsRestProblem(p.labels, ovr.classes[c], C, w, y, sample_C);
+      testing::LibsvmProblem prob(p.X, y);
+      std::map<int, double> lib_w;
+      if (!w.empty()) lib_w[1] = 2.5;
+      const auto lib = testing::libsvmTrain(prob, y, k.gamma, C, 1e-3, true, lib_w);
+      const double obj_lib = testing::exactObjective(lib.alpha, testing::exactGradient(p.X, y, lib.alpha, k));
+      EXPECT_NEAR(ovr.solutions[c].objective, obj_lib, 1e-5 * std::abs(obj_lib))
+          << "class " << ovr.classes[c] << " weighted " << !w.empty();
+      EXPECT_NEAR(ovr.models[c].bias(), lib.bias, 2e-2);
+    }
+  }
+}
+#endif
+
+}  // namespace
+}  // namespace svmp::svm
