@@ -16,6 +16,33 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+// A plain number, or a multiple of pi for angles: "pi", "-pi/2", "0.5pi", "2pi/3". False when the text
+// is anything else (trailing characters included).
+bool parseNumber(const std::string& s, double& v) {
+  if (s.empty()) return false;
+  const char* begin = s.c_str();
+  char* end = nullptr;
+  v = std::strtod(begin, &end);
+  if (*end == '\0') return end != begin;
+  double coefficient = v;
+  std::string rest(end);
+  if (end == begin) {  // no number before "pi", at most a sign
+    const bool sign = s[0] == '-' || s[0] == '+';
+    coefficient = s[0] == '-' ? -1 : 1;
+    rest = s.substr(sign ? 1 : 0);
+  }
+  if (rest.compare(0, 2, "pi") != 0) return false;
+  v = coefficient * kPi;
+  rest = rest.substr(2);
+  if (rest.empty()) return true;
+  if (rest[0] != '/') return false;
+  const char* denominator = rest.c_str() + 1;
+  const double d = std::strtod(denominator, &end);
+  if (end == denominator || *end != '\0') return false;
+  v /= d;
+  return true;
+}
+
 // Reads typed values from YAML nodes, naming "file: field 'path'" in every error.
 class Reader {
  public:
@@ -31,22 +58,17 @@ class Reader {
     e << YAML::Flow << n;
     return e.c_str();
   }
+  // field is the child's ("robot.type"); a parent that is not a mapping is reported under its own name.
   YAML::Node require(const YAML::Node& parent, const std::string& key, const std::string& field) const {
+    requireMap(parent, parentField(field, key));
     YAML::Node n = parent[key];
     if (!n.IsDefined() || n.IsNull()) fail(field, "is required");
     return n;
   }
   double number(const YAML::Node& n, const std::string& field) const {
     if (!n.IsScalar()) fail(field, "expected a number, got " + text(n));
-    const std::string s = n.Scalar();
-    char* end = nullptr;
-    double v = std::strtod(s.c_str(), &end);
-    std::string rest(end);
-    // Angles may be written as multiples of pi ("pi/2", "-0.5pi") for readability.
-    if (s == "pi" || s == "-pi") return s[0] == '-' ? -kPi : kPi;
-    if (rest == "pi") v *= kPi;
-    else if (rest.rfind("pi/", 0) == 0) v = (end == s.c_str() ? 1 : v) * kPi / std::strtod(rest.c_str() + 3, nullptr);
-    else if (s.empty() || !rest.empty()) fail(field, "expected a number, got " + text(n));
+    double v = 0;
+    if (!parseNumber(n.Scalar(), v)) fail(field, "expected a number, got " + text(n));
     if (!std::isfinite(v)) fail(field, "expected a finite number, got " + text(n));
     return v;
   }
@@ -64,6 +86,16 @@ class Reader {
     for (size_t i = 0; i < n.size(); ++i) v[i] = number(n[i], field + "[" + std::to_string(i) + "]");
     return v;
   }
+  // yaml-cpp throws its own exception when a scalar or list is indexed by key: test first.
+  void requireMap(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsMap()) fail(field, "expected a mapping {key: value}, got " + text(n));
+  }
+  static std::string parentField(const std::string& field, const std::string& key) {
+    const std::string suffix = "." + key;
+    if (field.size() > suffix.size() && field.compare(field.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return field.substr(0, field.size() - suffix.size());
+    return field;
+  }
   bool boolean(const YAML::Node& n, const std::string& field) const {
     if (n.IsScalar() && (n.Scalar() == "true" || n.Scalar() == "false")) return n.Scalar() == "true";
     fail(field, "expected true or false, got " + text(n));
@@ -80,6 +112,7 @@ class Reader {
 
 Eigen::Isometry3d readPose(const Reader& r, const YAML::Node& n, const std::string& field) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  r.requireMap(n, field);
   if (n["position"]) {
     Eigen::VectorXd p = r.vector(n["position"], field + ".position");
     if (p.size() != 2 && p.size() != 3) r.fail(field + ".position", "expected 2 or 3 numbers, got " + Reader::text(n["position"]));
@@ -175,6 +208,7 @@ std::shared_ptr<const robots::Robot> readRobot(const Reader& r, const YAML::Node
       if (!dh.IsSequence() || dh.size() == 0) r.fail("robot.dh", "expected a list of rows {a, alpha, d, offset}");
       for (size_t i = 0; i < dh.size(); ++i) {
         const std::string f = "robot.dh[" + std::to_string(i) + "]";
+        r.requireMap(dh[i], f);
         robots::DhRow row;
         row.a = dh[i]["a"] ? r.number(dh[i]["a"], f + ".a") : 0;
         row.alpha = dh[i]["alpha"] ? r.number(dh[i]["alpha"], f + ".alpha") : 0;
@@ -197,6 +231,7 @@ std::shared_ptr<const robots::Robot> readRobot(const Reader& r, const YAML::Node
     }
     if (n["flange"]) {
       const YAML::Node f = n["flange"];
+      r.requireMap(f, "robot.flange");
       spec.flange.a = f["a"] ? r.number(f["a"], "robot.flange.a") : 0;
       spec.flange.alpha = f["alpha"] ? r.number(f["alpha"], "robot.flange.alpha") : 0;
       spec.flange.d = f["d"] ? r.number(f["d"], "robot.flange.d") : 0;
@@ -240,7 +275,9 @@ ParameterSet Scenario::paramsFor(const std::string& planner) const {
   return ParameterSet(path, "planners." + planner + ".", {});
 }
 
-Scenario parseScenario(const std::string& yaml_text, const std::string& source) {
+namespace {
+
+Scenario parseScenarioUnguarded(const std::string& yaml_text, const std::string& source) {
   Reader r(source);
   YAML::Node root;
   try {
@@ -273,6 +310,7 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source) 
     if (!list.IsSequence()) r.fail("obstacles", "expected a list");
     for (size_t i = 0; i < list.size(); ++i) {
       const std::string f = "obstacles[" + std::to_string(i) + "]";
+      r.requireMap(list[i], f);
       Obstacle o;
       o.name = list[i]["name"] ? r.string(list[i]["name"], f + ".name") : "";
       o.shape = readShape(r, list[i], f);
@@ -335,6 +373,17 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source) 
     }
   }
   return s;
+}
+
+}  // namespace
+
+Scenario parseScenario(const std::string& yaml_text, const std::string& source) {
+  try {
+    return parseScenarioUnguarded(yaml_text, source);
+  } catch (const YAML::Exception& e) {
+    // Last line of defence for a node kind the reader did not test first: still name the file and line.
+    throw ScenarioError(source + ": line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
 }
 
 Scenario loadScenario(const std::string& path) {
