@@ -1,0 +1,117 @@
+// Collision checks per robot against a few obstacles (thesis Fig 4.4 style for the planar arms),
+// clearance and straight-line motion validation. Random configurations within the joint limits.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <numbers>
+#include <random>
+
+#include "cspace/motion_validator.hpp"
+#include "robots/dh_arm.hpp"
+#include "robots/planar_arm.hpp"
+#include "robots/point_robot.hpp"
+
+namespace {
+
+using svmp::cspace::CollisionChecker;
+using svmp::cspace::Environment;
+using svmp::cspace::Obstacle;
+using svmp::robots::Shape;
+constexpr double kPi = std::numbers::pi;
+
+Obstacle box(Eigen::Vector3d sides, Eigen::Vector3d centre) {
+  Obstacle o;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = centre;
+  o.shape = Shape::box(sides, pose);
+  return o;
+}
+
+struct World {
+  std::shared_ptr<const svmp::robots::Robot> robot;
+  std::shared_ptr<const Environment> env;
+};
+
+World makeWorld(const std::string& name) {
+  if (name == "point2d") {
+    return {std::make_shared<svmp::robots::PointRobot>(Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 10)),
+            std::make_shared<Environment>(std::vector<Obstacle>{
+                box({4, 6, 1}, {5, 3, 0}), box({4, 3.7, 1}, {5, 8.15, 0})})};
+  }
+  if (name == "planar5" || name == "planar6") {
+    // Fig 4.4 style: unit links around the base, three blocks in reach.
+    const int n = name == "planar5" ? 5 : 6;
+    return {std::make_shared<svmp::robots::PlanarArm>(
+                std::vector<double>(n, 1.0), std::vector<double>(n, 0.1),
+                Eigen::VectorXd::Constant(n, -kPi), Eigen::VectorXd::Constant(n, kPi)),
+            std::make_shared<Environment>(std::vector<Obstacle>{
+                box({1, 1, 1}, {3, 1, 0}), box({0.5, 2, 1}, {-2, 2, 0}), box({2, 0.5, 1}, {0, -3, 0})})};
+  }
+  const bool crs = name == "crs_f3";
+  return {std::make_shared<svmp::robots::DhArm>(crs ? svmp::robots::crsF3Spec(6) : svmp::robots::pandaSpec()),
+          std::make_shared<Environment>(std::vector<Obstacle>{
+              box({1, 1, 0.05}, {0.4, 0, -0.05}),  // table
+              box({0.1, 0.4, 0.4}, {0.45, 0.3, 0.3}), box({0.2, 0.2, 0.2}, {-0.3, -0.3, 0.6})})};
+}
+
+Eigen::MatrixXd randomConfigurations(const svmp::robots::Robot& robot, int n) {
+  std::mt19937_64 rng(1);
+  Eigen::MatrixXd q(robot.dof(), n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < robot.dof(); ++i)
+      q(i, j) = std::uniform_real_distribution<double>(robot.lowerLimits()[i], robot.upperLimits()[i])(rng);
+  return q;
+}
+
+void BM_CollisionCheck(benchmark::State& state, const std::string& name) {
+  const World world = makeWorld(name);
+  const CollisionChecker checker(world.robot, world.env);
+  const Eigen::MatrixXd q = randomConfigurations(*world.robot, 1024);
+  int i = 0, hits = 0;
+  for (auto _ : state) hits += checker.check(q.col(i++ & 1023)) != svmp::cspace::kFree;
+  state.SetItemsProcessed(state.iterations());
+  state.counters["colliding"] = static_cast<double>(hits) / state.iterations();
+}
+
+void BM_Clearance(benchmark::State& state, const std::string& name) {
+  const World world = makeWorld(name);
+  const CollisionChecker checker(world.robot, world.env);
+  const Eigen::MatrixXd q = randomConfigurations(*world.robot, 1024);
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(checker.clearance(q.col(i++ & 1023)));
+  state.SetItemsProcessed(state.iterations());
+}
+
+// Random segments of metric length ~0.5 at resolution 0.01 (about 50 checks when free).
+void BM_MotionValidator(benchmark::State& state, const std::string& name) {
+  const World world = makeWorld(name);
+  const CollisionChecker checker(world.robot, world.env);
+  const svmp::cspace::ConfigurationSpace space(world.robot->lowerLimits(), world.robot->upperLimits(),
+                                               Eigen::VectorXd::Ones(world.robot->dof()));
+  const svmp::cspace::MotionValidator validator(checker, space, 0.01);
+  const Eigen::MatrixXd a = randomConfigurations(*world.robot, 256);
+  Eigen::MatrixXd b(a.rows(), a.cols());
+  std::mt19937_64 rng(2);
+  for (int j = 0; j < a.cols(); ++j) b.col(j) = space.steer(a.col(j), space.sampleUniform(rng), 0.5);
+  int i = 0;
+  for (auto _ : state) {
+    const int j = i++ & 255;
+    benchmark::DoNotOptimize(validator.isValid(a.col(j), b.col(j)));
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["checks_per_segment"] = static_cast<double>(checker.collisionChecks()) / state.iterations();
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_CollisionCheck, point2d, "point2d");
+BENCHMARK_CAPTURE(BM_CollisionCheck, planar5, "planar5");
+BENCHMARK_CAPTURE(BM_CollisionCheck, planar6, "planar6");
+BENCHMARK_CAPTURE(BM_CollisionCheck, crs_f3, "crs_f3");
+BENCHMARK_CAPTURE(BM_CollisionCheck, panda, "panda");
+BENCHMARK_CAPTURE(BM_Clearance, planar6, "planar6");
+BENCHMARK_CAPTURE(BM_Clearance, panda, "panda");
+BENCHMARK_CAPTURE(BM_MotionValidator, planar6, "planar6");
+BENCHMARK_CAPTURE(BM_MotionValidator, panda, "panda");
+
+BENCHMARK_MAIN();
