@@ -149,6 +149,8 @@ bool lowestHitCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void*
 }  // namespace
 
 int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const {
+  // A wrong size would read past the limit vectors and the FK loops; NaN is left to withinLimits.
+  if (q.size() != robot_->dof()) robot_->checkConfiguration(q, "collision check");
   checks_.fetch_add(1, std::memory_order_relaxed);
   if (!robot_->withinLimits(q)) return kJointLimitHit;
   Workspace& ws = workspace();
@@ -180,6 +182,7 @@ int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool
 }
 
 bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const {
+  if (q.size() != robot_->dof()) robot_->checkConfiguration(q, "collision check");
   checks_.fetch_add(1, std::memory_order_relaxed);
   if (!robot_->withinLimits(q)) return false;
   Workspace& ws = workspace();
@@ -196,6 +199,7 @@ bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) 
 }
 
 double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  robot_->checkConfiguration(q, "clearance");
   Workspace& ws = workspace();
   placeRobot(ws, q);
   double best = std::numeric_limits<double>::infinity();

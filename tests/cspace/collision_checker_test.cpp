@@ -129,6 +129,10 @@ TEST(CollisionCheckerTest, JointLimitsComeFirst) {
   EXPECT_EQ(checker.check(Eigen::Vector2d(kPi + 0.01, 0)), kJointLimitHit);
   EXPECT_EQ(checker.check(Eigen::Vector2d(0, std::nan(""))), kJointLimitHit);
   EXPECT_FALSE(checker.hits(Eigen::Vector2d(kPi + 0.01, 0), 1));
+  // A configuration of the wrong size is a caller error, not a joint-limit hit.
+  EXPECT_THROW(checker.check(Eigen::Vector3d(0, 0, 0)), std::invalid_argument);
+  EXPECT_THROW(checker.hits(Eigen::VectorXd::Zero(1), 1), std::invalid_argument);
+  EXPECT_THROW(checker.clearance(Eigen::Vector3d(0, 0, 0)), std::invalid_argument);
 }
 
 TEST(CollisionCheckerTest, FoldedPlanarArmCollidesWithItself) {
