@@ -1,6 +1,6 @@
 #include "svm/kernel_column.hpp"
 
-#include "svm/simd.hpp"
+#include "svm/smo_loops.hpp"
 
 #include <algorithm>
 #include <utility>
@@ -8,7 +8,6 @@
 namespace svmp::svm {
 
 namespace {
-constexpr int kChunk = 256;  // distances of one chunk stay in L1 between the two passes
 constexpr int kParallelMin = 8192;
 }  // namespace
 
@@ -40,25 +39,7 @@ void KernelColumns::swap(int i, int j) {
 template <typename Out>
 void KernelColumns::computeBlock(const double* z, int begin, int end, Out* out) const {
   if (kernel_.isPlainRbf()) {
-    const double neg_gamma = -kernel_.gamma;
-    alignas(64) double dist[kChunk];
-    for (int c = begin; c < end; c += kChunk) {
-      const int len = std::min(kChunk, end - c);
-      for (int t = 0; t < len; ++t) dist[t] = 0.0;
-      for (int k = 0; k < d_; ++k) {
-        const double* row = coords_.data() + static_cast<size_t>(k) * n_ + c;
-        const double zk = z[k];
-        for (int t = 0; t < len; ++t) {
-          const double diff = row[t] - zk;
-          dist[t] += diff * diff;
-        }
-      }
-      Out* o = out + (c - begin);
-      const simd::Vd ng = simd::broadcast(neg_gamma);
-      int t = 0;
-      for (; t + simd::kLanes <= len; t += simd::kLanes) simd::store(o + t, simd::expNonPositive(ng * simd::load(dist + t)));
-      for (; t < len; ++t) o[t] = static_cast<Out>(expNonPositive(neg_gamma * dist[t]));
-    }
+    loops::rbfColumn(coords_.data() + begin, n_, d_, z, -kernel_.gamma, end - begin, out);
     return;
   }
   // Generic kernels: gather each sample (d is small); not a hot path in this project.

@@ -8,7 +8,7 @@
 
 #include "svm/kernel_cache.hpp"
 #include "svm/kernel_column.hpp"
-#include "svm/simd.hpp"
+#include "svm/smo_loops.hpp"
 
 namespace svmp::svm {
 
@@ -133,60 +133,17 @@ bool SmoSolver::selectWorkingSet(int& out_i, int& out_j) {
   const double* G = G_.data();
   const double* up = up_penalty_.data();
   const double* low = low_penalty_.data();
-  double* s = scratch_.data();
-
-  // i = argmax_{t in I_up} -y_t G_t. Masks are additive penalties (0 or -inf) so the loops are
-  // branch-free; the argmax is found by a second scan for the maximum value.
-  using simd::Vd;
-  Vd vmax = simd::broadcast(-kInf);
-  int t = 0;
-  for (; t + simd::kLanes <= m; t += simd::kLanes) {
-    const Vd v = simd::load(up + t) - simd::load(y + t) * simd::load(G + t);
-    simd::store(s + t, v);
-    vmax = simd::max(vmax, v);
-  }
-  double gmax = simd::hmax(vmax);
-  for (; t < m; ++t) {
-    s[t] = up[t] - y[t] * G[t];
-    gmax = s[t] > gmax ? s[t] : gmax;
-  }
-  if (gmax == -kInf) return false;
-  int i = 0;
-  while (s[i] != gmax) ++i;
-
+  // i = argmax_{t in I_up} -y_t G_t; masks are additive penalties so the loops are branch-free.
+  const loops::ArgMax best_i = loops::selectI(m, up, y, G);
+  if (best_i.index < 0) return false;
+  const int i = best_i.index;
+  const double gmax = best_i.value;
   // j = argmin over t in I_low with y_t G_t > -gmax of -(gmax + y_t G_t)^2 / curvature (WSS2)
   const float* Ki = column(i, m);
-  const double* diag = data_.diagonalData();
-  const double kii = data_.diagonal(i);
-  auto objective = [&](auto yg, auto lowp, auto dg, auto kit, auto inf, auto tau, auto zero) {
-    const auto diff = gmax + yg;
-    auto quad = kii + dg - 2.0 * kit;
-    quad = quad > zero ? quad : tau;
-    auto obj = -(diff * diff) / quad;
-    obj = diff > zero ? obj : inf;
-    return obj + lowp;  // lowp is 0 or +inf
-  };
-  Vd vmax2 = simd::broadcast(-kInf), vmin = simd::broadcast(kInf);
-  const Vd vinf = simd::broadcast(kInf), vtau = simd::broadcast(kTau), vzero = simd::broadcast(0);
-  t = 0;
-  for (; t + simd::kLanes <= m; t += simd::kLanes) {
-    const Vd yg = simd::load(y + t) * simd::load(G + t);
-    const Vd lowp = simd::load(low + t);
-    vmax2 = simd::max(vmax2, yg - lowp);
-    const Vd obj = objective(yg, lowp, simd::load(diag + t), simd::load(Ki + t), vinf, vtau, vzero);
-    simd::store(s + t, obj);
-    vmin = simd::min(vmin, obj);
-  }
-  double gmax2 = simd::hmax(vmax2), obj_min = simd::hmin(vmin);
-  for (; t < m; ++t) {
-    const double yg = y[t] * G[t];
-    gmax2 = std::max(gmax2, yg - low[t]);
-    s[t] = objective(yg, low[t], diag[t], static_cast<double>(Ki[t]), kInf, kTau, 0.0);
-    obj_min = std::min(obj_min, s[t]);
-  }
-  if (gmax + gmax2 < opt_.eps || obj_min == kInf) return false;
-  int j = 0;
-  while (s[j] != obj_min) ++j;
+  const loops::SelectJ best_j = loops::selectJ(m, low, y, G, data_.diagonalData(), Ki,
+                                               data_.diagonal(i), gmax, kTau);
+  if (gmax + best_j.gmax2 < opt_.eps || best_j.j < 0) return false;
+  const int j = best_j.j;
   out_i = i;
   out_j = j;
   return true;
@@ -239,12 +196,8 @@ void SmoSolver::update(int i, int j) {
   // G_t += Q_ti dA_i + Q_tj dA_j with Q_ti = y_t y_i K_ti.
   const double wi = y_[i] * (ai - old_ai);
   const double wj = y_[j] * (aj - old_aj);
-  double* G = G_.data();
+  loops::updateGradient(active_, G_.data(), y_.data(), Ki, Kj, wi, wj);
   const double* y = y_.data();
-  const int m = active_;
-#pragma omp simd
-  for (int t = 0; t < m; ++t)
-    G[t] += y[t] * (wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]));
 
   const bool was_upper_i = old_ai >= Ci, was_upper_j = old_aj >= Cj;
   updateMasks(i);

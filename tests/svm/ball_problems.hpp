@@ -22,8 +22,11 @@ struct BallProblem {
 
 // Each class is a chain of `balls` balls of radius r whose centres random-walk by r (so they
 // overlap); different classes may overlap too, which makes some samples ambiguous (bounded SVs).
+// Default radius: 0.08 in the plane (separate obstacles, as in the thesis' 2-D examples), 0.2 in
+// higher dimensions (chains of different classes touch and overlap).
 inline BallProblem makeBallProblem(int d, int n, int classes, unsigned long long seed,
-                                   int balls = 4, double r = 0.2) {
+                                   int balls = 4, double r = -1) {
+  if (r <= 0) r = d <= 2 ? 0.08 : 0.2;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   std::normal_distribution<double> normal(0.0, 1.0);

@@ -1,0 +1,38 @@
+// The O(n) loops of one SMO iteration and the RBF kernel column, vectorised and dispatched at run
+// time to AVX2 (4 lanes) or baseline SSE2 (2 lanes). Working-set selection is WSS2 of Fan, Chen,
+// Lin, JMLR 6 (2005); the gradient update is libsvm's (Chang & Lin 2011, sec. 4.1).
+#pragma once
+
+namespace svmp::svm::loops {
+
+struct ArgMax {
+  double value;
+  int index;  // -1 when no entry qualifies
+};
+
+// max_t up[t] - y[t] G[t] (up[t] is 0 for t in I_up, -inf otherwise): the WSS "i".
+ArgMax selectI(int m, const double* up, const double* y, const double* G);
+
+struct SelectJ {
+  double gmax2;    // max_{t in I_low} y_t G_t
+  double obj_min;  // min second-order objective decrease; +inf if none
+  int j;
+};
+// low[t] is 0 for t in I_low, +inf otherwise; tau replaces non-positive curvature.
+SelectJ selectJ(int m, const double* low, const double* y, const double* G, const double* diag,
+                const float* Ki, double kii, double gmax, double tau);
+
+// G[t] += y[t] (wi Ki[t] + wj Kj[t])
+void updateGradient(int m, double* G, const double* y, const float* Ki, const float* Kj, double wi,
+                    double wj);
+
+// out[t] = exp(-gamma |z - x_t|^2) for t in [0, len); coords has d rows of stride `stride`,
+// already offset to the first sample.
+void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
+               float* out);
+void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
+               double* out);
+
+bool usingAvx2();
+
+}  // namespace svmp::svm::loops
