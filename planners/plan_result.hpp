@@ -7,7 +7,15 @@
 
 namespace svmp::planners {
 
-enum class PlanStatus { kSolved, kFailed, kTimeout, kInvalidStart, kInvalidGoal, kInvalidInput };
+enum class PlanStatus {
+  kSolved,
+  kFailed,
+  kTimeout,
+  kInvalidStart,
+  kInvalidGoal,
+  kInvalidInput,
+  kLocalMinimum  // a potential-field descent stopped making progress (local planner)
+};
 
 const char* planStatusName(PlanStatus status);
 

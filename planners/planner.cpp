@@ -1,5 +1,6 @@
 #include "planners/planner.hpp"
 
+#include "planners/local_planner.hpp"
 #include "planners/prm_planner.hpp"
 #include "planners/svmp_planner.hpp"
 #ifdef SVMP_WITH_OMPL
@@ -16,6 +17,7 @@ const char* planStatusName(PlanStatus status) {
     case PlanStatus::kInvalidStart: return "invalid_start";
     case PlanStatus::kInvalidGoal: return "invalid_goal";
     case PlanStatus::kInvalidInput: return "invalid_input";
+    case PlanStatus::kLocalMinimum: return "local_minimum";
   }
   return "?";
 }
@@ -40,7 +42,7 @@ bool checkEndpoints(const PlanningContext& context, const cspace::Query& query, 
 }
 
 std::vector<std::string> plannerNames() {
-  std::vector<std::string> names = {"svmp", "prm"};
+  std::vector<std::string> names = {"svmp", "prm", "local"};
 #ifdef SVMP_WITH_OMPL
   for (const char* n : {"ompl-prm", "ompl-lazyprm", "ompl-rrtconnect"}) names.push_back(n);
 #endif
@@ -67,6 +69,24 @@ std::unique_ptr<Planner> makePlanner(const std::string& name, const PlanningCont
     o.repair_rounds = static_cast<int>(params.getInt("repair_rounds", o.repair_rounds, 0, 1000));
     o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
     planner = std::make_unique<SvmpPlanner>(context, o);
+  } else if (name == "local") {
+    LocalPlannerOptions o;
+    o.sigma = params.getDouble("sigma", o.sigma, 1e-9);
+    o.C = params.getDouble("C", o.C, 1e-9);
+    o.mu = params.getDouble("mu", o.mu, 0);
+    o.step = params.getDouble("step", o.step, 1e-9);
+    o.boundary_tolerance = params.getDouble("boundary_tolerance", o.boundary_tolerance, 0);
+    o.eps = params.getDouble("eps", o.eps, 1e-15, 1);
+    o.labelling = params.getString("labelling", "balanced", {"balanced", "random"}) == "random"
+                      ? LabellingMethod::kRandom
+                      : LabellingMethod::kBalanced;
+    o.sampling.link_resolution = params.getDouble("link_resolution", o.sampling.link_resolution, 1e-6);
+    o.sampling.obstacle_resolution = params.getDouble("obstacle_resolution", o.sampling.obstacle_resolution, 1e-6);
+    o.sampling.boundary_resolution = params.getDouble("boundary_resolution", o.sampling.boundary_resolution, 1e-6);
+    o.sampling.max_samples = static_cast<int>(params.getInt("max_samples", o.sampling.max_samples, 2, 1000000));
+    o.max_iterations = static_cast<int>(params.getInt("max_iterations", o.max_iterations, 1, 100000000));
+    o.stall_iterations = static_cast<int>(params.getInt("stall_iterations", o.stall_iterations, 1, 100000000));
+    planner = std::make_unique<LocalPlanner>(context, o);
   } else if (name == "prm") {
     PrmOptions o;
     o.samples = static_cast<int>(params.getInt("samples", o.samples, 1, 100000000));

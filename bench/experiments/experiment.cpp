@@ -13,7 +13,11 @@
 
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
+#include "bench/experiments/svg_writer.hpp"
+#include "planners/local_planner.hpp"
 #include "planners/planner.hpp"
+#include "planners/prm_planner.hpp"
+#include "planners/svmp_planner.hpp"
 
 namespace svmp::experiments {
 namespace {
@@ -90,6 +94,34 @@ std::string meanStd(const Stats& s, int precision) {
   return o.str();
 }
 
+// Pictures of one run (thesis Figs 3.1-3.8, 4.5, 4.7): what the planner learned and its path.
+void writePictures(const std::string& dir, const cspace::Scenario& scenario, const planners::Planner& planner,
+                   const RunRecord& record, std::ostream& log) {
+  SvgContent content;
+  content.scenario = &scenario;
+  content.path = &record.result.path;
+  content.title = scenario.name + ": " + planner.name() + " (" + planners::planStatusName(record.result.status) + ")";
+  cspace::ObstacleSamples local_samples;  // the local planner's samples, coloured by their label
+  if (const auto* svmp = dynamic_cast<const planners::SvmpPlanner*>(&planner)) {
+    content.samples = &svmp->samples();
+    content.risk = svmp->risk();
+    content.roadmap = &svmp->roadmap();
+  } else if (const auto* prm = dynamic_cast<const planners::PrmPlanner*>(&planner)) {
+    content.roadmap = &prm->roadmap();
+  } else if (const auto* local = dynamic_cast<const planners::LocalPlanner*>(&planner)) {
+    local_samples.points = local->samples().points;
+    for (int i = 0; i < local->labelling().y.size(); ++i) {
+      local_samples.labels.push_back(local->labelling().y[i] > 0 ? 1 : 2);
+      local_samples.boundary.push_back(0);
+    }
+    content.samples = &local_samples;
+    content.risk = local->risk();
+  }
+  const std::string base = dir + "/" + scenario.name + "_" + planner.name();
+  if (writeConfigurationSpaceSvg(base + "_cspace.svg", content)) log << "  wrote " << base << "_cspace.svg\n";
+  if (writeWorkspaceSvg(base + "_workspace.svg", content)) log << "  wrote " << base << "_workspace.svg\n";
+}
+
 }  // namespace
 
 int PlannerRuns::solved() const {
@@ -134,6 +166,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
       record.result = planners[p]->solve(scenario.queries.front(), seed);
       record.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       measurePath(scenario, space, measuring, record);
+      if (r == 0 && !options.svg_dir.empty()) writePictures(options.svg_dir, scenario, *planners[p], record, log);
       log << "  " << runs.planner << " seed " << seed << ": " << planners::planStatusName(record.result.status)
           << ", " << record.result.collision_checks << " checks, " << std::fixed << std::setprecision(1)
           << record.time_ms << " ms" << (record.result.message.empty() ? "" : " (" + record.result.message + ")")

@@ -1,0 +1,202 @@
+#include "planners/ik_obstacle_sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "robots/dh_arm.hpp"
+#include "robots/planar_arm.hpp"
+
+namespace svmp::planners {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+int steps(double length, double resolution) {
+  return std::max(1, static_cast<int>(std::ceil(length / resolution)));
+}
+
+// Grid points on a box's six faces (box frame), spaced about `res`.
+void boxSurface(const Eigen::Vector3d& sides, double res, std::vector<Eigen::Vector3d>& out) {
+  const Eigen::Vector3d h = 0.5 * sides;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const int nu = steps(sides[u], res), nv = steps(sides[v], res);
+    for (double sign : {-1.0, 1.0})
+      for (int i = 0; i <= nu; ++i)
+        for (int j = 0; j <= nv; ++j) {
+          Eigen::Vector3d p;
+          p[axis] = sign * h[axis];
+          p[u] = -h[u] + sides[u] * i / nu;
+          p[v] = -h[v] + sides[v] * j / nv;
+          out.push_back(p);
+        }
+  }
+}
+
+}  // namespace
+
+std::string IkSamplingOptions::validate() const {
+  std::ostringstream err;
+  if (!(link_resolution > 0)) err << "link_resolution must be positive, got " << link_resolution;
+  else if (!(obstacle_resolution > 0)) err << "obstacle_resolution must be positive, got " << obstacle_resolution;
+  else if (!(boundary_resolution > 0)) err << "boundary_resolution must be positive, got " << boundary_resolution;
+  else if (free_joint_draws < 1) err << "free_joint_draws must be >= 1";
+  else if (max_samples < 2) err << "max_samples must be >= 2";
+  return err.str();
+}
+
+std::vector<Eigen::Vector3d> surfacePoints(const robots::Shape& shape, double res, bool planar) {
+  std::vector<Eigen::Vector3d> local;
+  const Eigen::Vector3d& d = shape.dims;
+  const double z0 = -shape.pose.translation().z();  // the world plane z = 0 in the shape's frame
+  if (planar && shape.kind == robots::ShapeKind::kBox) {
+    // Outline of the cross-section with z = 0 (boxes standing upright: local z along world z).
+    const Eigen::Vector2d h = 0.5 * d.head<2>();
+    const Eigen::Vector2d corners[5] = {{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}, {-h.x(), -h.y()}};
+    for (int side = 0; side < 4; ++side) {
+      const Eigen::Vector2d from = corners[side], to = corners[side + 1];
+      const int n = steps((to - from).norm(), res);
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Vector2d p = from + (to - from) * (static_cast<double>(i) / n);
+        local.emplace_back(p.x(), p.y(), z0);
+      }
+    }
+  } else if (planar) {  // spheres, upright cylinders and capsules: a circle
+    const double r = d.x();
+    const int n = steps(2 * kPi * r, res);
+    for (int i = 0; i < n; ++i)
+      local.emplace_back(r * std::cos(2 * kPi * i / n), r * std::sin(2 * kPi * i / n), z0);
+  } else if (shape.kind == robots::ShapeKind::kBox) {
+    boxSurface(d, res, local);
+  } else {
+    // Spheres, cylinders and capsules: rings along the local z axis, walking the profile.
+    const double r = d.x(), length = shape.kind == robots::ShapeKind::kSphere ? 0.0 : d.y();
+    const bool caps = shape.kind != robots::ShapeKind::kCylinder;
+    const double total = length + (caps ? kPi * r : 0.0);
+    const int rings = steps(total, res);
+    for (int k = 0; k <= rings; ++k) {
+      const double arc = total * k / rings;
+      double z = -0.5 * length + arc, radius = r;
+      if (caps && arc < 0.5 * kPi * r) {
+        z = -0.5 * length - r * std::cos(arc / r), radius = r * std::sin(arc / r);
+      } else if (caps && arc > 0.5 * kPi * r + length) {
+        const double a = (arc - length) / r;
+        z = 0.5 * length - r * std::cos(a), radius = r * std::sin(a);
+      } else if (caps) {
+        z = -0.5 * length + (arc - 0.5 * kPi * r);
+      }
+      const int n = radius > 1e-12 ? steps(2 * kPi * radius, res) : 1;
+      for (int i = 0; i < n; ++i)
+        local.emplace_back(radius * std::cos(2 * kPi * i / n), radius * std::sin(2 * kPi * i / n), z);
+    }
+  }
+  std::vector<Eigen::Vector3d> world;
+  world.reserve(local.size());
+  for (const auto& p : local) world.push_back(shape.pose * p);
+  if (planar)
+    for (auto& p : world) p.z() = 0;
+  return world;
+}
+
+namespace {
+
+// Samples of the configuration-space boundary: a grid on each face of the joint-limit box.
+void boundarySamples(const cspace::ConfigurationSpace& space, double res, cspace::Rng& rng, int budget,
+                     std::vector<Eigen::VectorXd>& out) {
+  const int n = space.dim();
+  const Eigen::VectorXd range = space.upper() - space.lower();
+  double per_face = 1;
+  for (int j = 0; j < n; ++j) per_face *= steps(range[j], res) + 1;
+  for (int face = 0; face < 2 * n; ++face) {
+    const int axis = face / 2;
+    const int count = std::min<double>(per_face / (steps(range[axis], res) + 1), budget / (2.0 * n));
+    for (int c = 0; c < count; ++c) {
+      Eigen::VectorXd q = space.sampleUniform(rng);  // random points: a grid in 5-6 dims is too big
+      q[axis] = face % 2 ? space.upper()[axis] : space.lower()[axis];
+      out.push_back(q);
+    }
+  }
+}
+
+}  // namespace
+
+IkSamples sampleObstaclesByIk(const cspace::CollisionChecker& checker,
+                              const cspace::ConfigurationSpace& space,
+                              const IkSamplingOptions& options, std::uint64_t seed) {
+  const std::string err = options.validate();
+  if (!err.empty()) throw std::invalid_argument("IK obstacle sampling: " + err);
+  const robots::Robot& robot = checker.robot();
+  const auto* planar = dynamic_cast<const robots::PlanarArm*>(&robot);
+  const auto* dh = dynamic_cast<const robots::DhArm*>(&robot);
+  if (!planar && !dh)
+    throw std::invalid_argument("IK obstacle sampling needs a planar arm or the CRS-F3 (robot '" +
+                                robot.name() + "' has no closed-form IK here)");
+  cspace::Rng rng(seed);
+  std::vector<Eigen::VectorXd> configs;
+  std::vector<int> regions;
+  auto keep = [&](const std::vector<Eigen::VectorXd>& solutions, int region) {
+    for (const auto& q : solutions)
+      if (robot.withinLimits(q)) configs.push_back(q), regions.push_back(region);
+  };
+  Eigen::VectorXd free_joints(robot.dof());
+  for (const auto& obstacle : checker.environment().obstacles()) {
+    for (const Eigen::Vector3d& o : surfacePoints(obstacle.shape, options.obstacle_resolution, planar)) {
+      for (int draw = 0; draw < options.free_joint_draws; ++draw) {
+        space.sampleUniform(rng, free_joints);
+        if (planar) {
+          const Eigen::Vector2d target = o.head<2>();
+          const double s0 = (target - planar->base()).norm();  // link 1 touches o only here
+          if (s0 > 0 && s0 <= planar->lengths()[0])
+            keep(planar->solvePointOnLink(0, s0, target, free_joints), obstacle.id);
+          for (int link = 1; link < robot.dof(); ++link) {
+            const double length = planar->lengths()[link];
+            const int n = steps(length, options.link_resolution);
+            for (int i = 1; i <= n; ++i)
+              keep(planar->solvePointOnLink(link, length * i / n, target, free_joints), obstacle.id);
+          }
+          continue;
+        }
+        // CRS-F3: the upper arm touches o at the distance of o from the shoulder (per base
+        // orientation); the forearm at every link point. The short shoulder offset is not sampled.
+        const auto& spec = dh->spec();
+        const double forearm = std::abs(spec.rows.size() > 3 ? spec.rows[3].d : spec.flange.d);
+        const double upper_arm = spec.rows[2].a;
+        for (double turn : {0.0, kPi}) {
+          Eigen::VectorXd q = free_joints;
+          q[0] = std::remainder(std::atan2(o.y() - spec.base.translation().y(),
+                                           o.x() - spec.base.translation().x()) + turn - spec.rows[0].offset,
+                                2 * kPi);
+          const double s = (o - dh->pointOnLinkFirstThree(q, 1, spec.rows[1].a)).norm();
+          if (s > 0 && s <= upper_arm) keep(dh->solvePointOnLinkFirstThree(2, s, o, free_joints), obstacle.id);
+        }
+        const int n = steps(forearm, options.link_resolution);
+        for (int i = 1; i <= n; ++i)
+          keep(dh->solvePointOnLinkFirstThree(3, forearm * i / n, o, free_joints), obstacle.id);
+      }
+    }
+  }
+  // The joint limits bound the free space too (ch. 2.2.1); they get at most a third of the budget.
+  std::vector<Eigen::VectorXd> boundary;
+  boundarySamples(space, options.boundary_resolution, rng, options.max_samples / 3, boundary);
+  for (auto& q : boundary) configs.push_back(std::move(q)), regions.push_back(kBoundaryRegion);
+
+  // Uniform thinning to the budget, keeping the original order (deterministic for the seed).
+  std::vector<int> order(configs.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  if (static_cast<int>(order.size()) > options.max_samples) {
+    std::shuffle(order.begin(), order.end(), rng);
+    order.resize(options.max_samples);
+    std::sort(order.begin(), order.end());
+  }
+  IkSamples samples;
+  samples.points.resize(robot.dof(), static_cast<Eigen::Index>(order.size()));
+  for (size_t i = 0; i < order.size(); ++i) {
+    samples.points.col(i) = configs[order[i]];
+    samples.regions.push_back(regions[order[i]]);
+  }
+  return samples;
+}
+
+}  // namespace svmp::planners

@@ -1,0 +1,55 @@
+#pragma once
+// The local SVM-based planner of thesis ch. 2: IK-based obstacle samples (ch. 2.2.1), labelled by a
+// hyperplane through start and goal (eqs. 2.24-2.25), one binary RBF SVM with per-obstacle C (virtual
+// guide obstacles get their lower weight, ch. 2.3), the risk function R(q) = |F(q)| (eq. 2.26, shared
+// RiskFunction) and descent on the potential U(q) = mu ||q - q_goal|| + R(q) (eq. 2.27) by fixed-length
+// steps along -grad U. No progress towards the goal for `stall_iterations` steps is reported as
+// PlanStatus::kLocalMinimum; a step into a real obstacle ends the run as kFailed. Each step is checked
+// by the shared motion validator, so the returned path is collision-free at the scenario's resolution.
+// Parameters (scenario `planners.local`): sigma, C, mu, step, labelling (balanced|random),
+// link_resolution, obstacle_resolution, boundary_resolution, max_samples, max_iterations,
+// stall_iterations.
+#include <optional>
+
+#include "planners/hyperplane_labelling.hpp"
+#include "planners/ik_obstacle_sampler.hpp"
+#include "planners/planner.hpp"
+#include "planners/risk_function.hpp"
+
+namespace svmp::planners {
+
+struct LocalPlannerOptions {
+  double sigma = 0.3;
+  double C = 100;
+  double mu = 0.1;
+  double step = 0.02;          // descent step, weighted metric
+  double boundary_tolerance = 0.05;  // |F| below which the descent counts as on the boundary
+  double eps = 1e-3;           // SMO tolerance
+  LabellingMethod labelling = LabellingMethod::kBalanced;
+  IkSamplingOptions sampling;
+  int max_iterations = 20000;
+  int stall_iterations = 200;  // steps without a new best distance to the goal
+};
+
+class LocalPlanner final : public Planner {
+ public:
+  LocalPlanner(const PlanningContext& context, LocalPlannerOptions options);
+  std::string name() const override { return "local"; }
+  void clear() override;
+  PlanResult solve(const cspace::Query& query, std::uint64_t seed) override;
+
+  const IkSamples& samples() const { return samples_; }
+  const Labelling& labelling() const { return labelling_; }
+  const RiskFunction* risk() const { return risk_ ? &*risk_ : nullptr; }
+
+ private:
+  PlanStatus descend(const cspace::Query& query, PlanResult& result) const;
+
+  PlanningContext context_;
+  LocalPlannerOptions options_;
+  IkSamples samples_;
+  Labelling labelling_;
+  std::optional<RiskFunction> risk_;
+};
+
+}  // namespace svmp::planners
