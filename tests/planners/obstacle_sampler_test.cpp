@@ -1,0 +1,144 @@
+// Obstacle sampling (thesis Algorithm 1): labels, tree sizes, boundary samples, roots, determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cspace/obstacle_sampler.hpp"
+#include "test_world.hpp"
+
+namespace svmp::planners {
+namespace {
+
+using test::makeWorld;
+
+// Three obstacles: two boxes and a sphere; the sphere's root comes from the scenario.
+const char* kThreeObstacles =
+    "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+    "obstacles:\n"
+    "  - {name: left, shape: box, size: [0.2, 0.6, 1.0], position: [0.2, 0.5, 0]}\n"
+    "  - {name: right, shape: box, size: [0.2, 0.6, 1.0], position: [0.8, 0.5, 0]}\n"
+    "  - {name: ball, shape: sphere, radius: 0.1, position: [0.5, 0.85, 0], sample: [0.53, 0.82]}\n"
+    "start: [0.5, 0.1]\n"
+    "goal: [0.5, 0.5]\n"
+    "resolution: 0.01\n"
+    "metric_weights: [1.0, 2.0]\n";
+
+cspace::ObstacleSamplerOptions samplerOptions() {
+  cspace::ObstacleSamplerOptions o;
+  o.step = 0.04;
+  o.samples_per_tree = 150;
+  return o;
+}
+
+TEST(ObstacleSampler, SamplesHitTheirObstacleAndTreesAreFull) {
+  auto w = makeWorld(kThreeObstacles);
+  const auto opt = samplerOptions();
+  const auto s = cspace::sampleObstacles(w->checker, w->space, opt, 21, 1);
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  ASSERT_EQ(s.tree_sizes.size(), 3u);
+  for (int size : s.tree_sizes) EXPECT_EQ(size, opt.samples_per_tree);
+  ASSERT_EQ(s.size(), 3 * opt.samples_per_tree);
+  ASSERT_EQ(s.points.cols(), s.size());
+  ASSERT_EQ(s.boundary.size(), s.labels.size());
+  std::vector<int> per_label(4, 0), boundary_per_label(4, 0);
+  for (int i = 0; i < s.size(); ++i) {
+    ASSERT_GE(s.labels[i], 1);
+    ASSERT_LE(s.labels[i], 3);
+    ++per_label[s.labels[i]];
+    boundary_per_label[s.labels[i]] += s.boundary[i];
+    EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i]))
+        << "sample " << i << " at " << s.points.col(i).transpose() << " does not hit " << s.labels[i];
+    EXPECT_TRUE(w->space.contains(s.points.col(i)));
+  }
+  for (int id = 1; id <= 3; ++id) {
+    EXPECT_EQ(per_label[id], opt.samples_per_tree);
+    EXPECT_GT(boundary_per_label[id], 0) << "obstacle " << id << " has no boundary sample";
+  }
+  EXPECT_EQ(s.numBoundary(), boundary_per_label[1] + boundary_per_label[2] + boundary_per_label[3]);
+}
+
+TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
+  auto w = makeWorld(kThreeObstacles);
+  const auto opt = samplerOptions();
+  const auto s = cspace::sampleObstacles(w->checker, w->space, opt, 22, 1);
+  const Eigen::VectorXd& scale = w->space.metricScale();
+  int checked = 0;
+  for (int i = 0; i < s.size(); ++i) {
+    if (!s.boundary[i]) continue;
+    ++checked;
+    const Eigen::VectorXd q = s.points.col(i);
+    bool found = false;
+    // Probe directions on circles of metric radius <= step (the step that left the obstacle had
+    // metric length <= step and ended inside the bounds).
+    for (double radius : {1.0, 0.75, 0.5, 0.25, 0.1}) {
+      for (int a = 0; a < 720 && !found; ++a) {
+        const double angle = 2 * M_PI * a / 720;
+        Eigen::VectorXd p = q;
+        p[0] += radius * opt.step * std::cos(angle) / scale[0];
+        p[1] += radius * opt.step * std::sin(angle) / scale[1];
+        found = w->space.contains(p) && !w->checker.hits(p, s.labels[i]);
+      }
+      if (found) break;
+    }
+    EXPECT_TRUE(found) << "boundary sample " << i << " at " << q.transpose() << " of obstacle "
+                       << s.labels[i] << " has no free configuration within one step";
+  }
+  EXPECT_GT(checked, 0);
+  // Interior samples deep inside a box are never marked: the left box spans x in [0.1, 0.3].
+  for (int i = 0; i < s.size(); ++i) {
+    const Eigen::VectorXd q = s.points.col(i);
+    if (s.labels[i] == 1 && q.x() > 0.1 + 2 * opt.step && q.x() < 0.3 - 2 * opt.step &&
+        q.y() > 0.2 + 2 * opt.step && q.y() < 0.8 - 2 * opt.step) {
+      EXPECT_FALSE(s.boundary[i]) << "deep sample " << q.transpose() << " marked boundary";
+    }
+  }
+}
+
+TEST(ObstacleSampler, ScenarioRootIsTheFirstSampleOfItsTree) {
+  auto w = makeWorld(kThreeObstacles);
+  const auto s = cspace::sampleObstacles(w->checker, w->space, samplerOptions(), 23, 2);
+  int first = -1;
+  for (int i = 0; i < s.size() && first < 0; ++i)
+    if (s.labels[i] == 3) first = i;
+  ASSERT_GE(first, 0);
+  EXPECT_NEAR((s.points.col(first) - Eigen::Vector2d(0.53, 0.82)).norm(), 0, 1e-15);
+}
+
+TEST(ObstacleSampler, RootThatMissesItsObstacleIsReportedNotUsed) {
+  std::string yaml = kThreeObstacles;
+  yaml.replace(yaml.find("sample: [0.53, 0.82]"), 20, "sample: [0.53, 0.60]");
+  auto w = makeWorld(yaml);
+  const auto s = cspace::sampleObstacles(w->checker, w->space, samplerOptions(), 24, 1);
+  ASSERT_EQ(s.tree_sizes.size(), 3u);
+  EXPECT_EQ(s.tree_sizes[2], 0);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("ball"), std::string::npos) << s.warnings[0];
+  for (int label : s.labels) EXPECT_NE(label, 3);
+}
+
+TEST(ObstacleSampler, SameSeedGivesSameSamplesWithOneAndTwoThreads) {
+  auto w = makeWorld(kThreeObstacles);
+  const auto opt = samplerOptions();
+  const auto one = cspace::sampleObstacles(w->checker, w->space, opt, 25, 1);
+  const auto two = cspace::sampleObstacles(w->checker, w->space, opt, 25, 2);
+  ASSERT_EQ(one.size(), two.size());
+  EXPECT_TRUE(one.points == two.points);
+  EXPECT_EQ(one.labels, two.labels);
+  EXPECT_EQ(one.boundary, two.boundary);
+  EXPECT_EQ(one.tree_sizes, two.tree_sizes);
+  const auto other = cspace::sampleObstacles(w->checker, w->space, opt, 26, 1);
+  EXPECT_FALSE(other.points == one.points) << "the seed has no effect";
+}
+
+TEST(ObstacleSampler, RejectsInvalidOptions) {
+  auto w = makeWorld(kThreeObstacles);
+  auto opt = samplerOptions();
+  opt.step = 0;
+  EXPECT_THROW(cspace::sampleObstacles(w->checker, w->space, opt, 1, 1), std::invalid_argument);
+  opt = samplerOptions();
+  opt.samples_per_tree = 0;
+  EXPECT_THROW(cspace::sampleObstacles(w->checker, w->space, opt, 1, 1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace svmp::planners

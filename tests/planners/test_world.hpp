@@ -1,0 +1,100 @@
+#pragma once
+// Shared fixtures of the planners tests: a scenario parsed from inline YAML with its space, checker,
+// local planner and planning context (which holds references, so the world lives on the heap), and an
+// independent re-check of a path at a quarter of the checking resolution.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cspace/collision_checker.hpp"
+#include "cspace/motion_validator.hpp"
+#include "cspace/scenario.hpp"
+#include "planners/planner.hpp"
+
+namespace svmp::planners::test {
+
+struct World {
+  cspace::Scenario scenario;
+  cspace::ConfigurationSpace space;
+  cspace::CollisionChecker checker;
+  cspace::MotionValidator validator;
+  PlanningContext context;
+
+  World(const std::string& yaml, int threads)
+      : scenario(cspace::parseScenario(yaml, "test.yaml")),
+        space(scenario.makeSpace()),
+        checker(scenario.robot, scenario.environment, scenario.self_collision),
+        validator(checker, space, scenario.resolution),
+        context{space, checker, validator, threads} {}
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const cspace::Query& query() const { return scenario.queries.front(); }
+  std::unique_ptr<Planner> planner(const std::string& name) const {
+    return makePlanner(name, context, scenario.paramsFor(name));
+  }
+};
+
+inline std::unique_ptr<World> makeWorld(const std::string& yaml, int threads = 1) {
+  return std::make_unique<World>(yaml, threads);
+}
+
+// A point robot in the unit square; a wall x in [0.4, 0.6] split into two obstacles by a horizontal gap
+// at y = 0.5 of usable width `gap` (as bench/scenarios/gap_*.yaml).
+inline std::string gapScenario(double gap, const std::string& planners, const std::string& extra = "") {
+  const double half = 0.5 * gap + 1e-6;  // robot radius 1e-6
+  const double lower_top = 0.5 - half, upper_bottom = 0.5 + half;
+  const double lower_size = lower_top + 0.1, upper_size = 1.1 - upper_bottom;
+  char buf[2048];
+  std::snprintf(buf, sizeof(buf),
+                "name: gap\n"
+                "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+                "obstacles:\n"
+                "  - {name: wall_lower, shape: box, size: [0.2, %.9f, 1.0], position: [0.5, %.9f, 0]}\n"
+                "  - {name: wall_upper, shape: box, size: [0.2, %.9f, 1.0], position: [0.5, %.9f, 0]}\n"
+                "start: [0.1, 0.1]\n"
+                "goal: [0.9, 0.9]\n"
+                "resolution: 0.002\n",
+                lower_size, lower_top - 0.5 * lower_size, upper_size, upper_bottom + 0.5 * upper_size);
+  return std::string(buf) + extra + "planners:\n" + planners;
+}
+
+// Every segment re-checked by an independent checker at 1/4 of the resolution, end points included.
+// `allowed_run` > 0 tolerates colliding stretches shorter than that (metric length between the free
+// configurations around them): a validator checking at spacing `resolution` can only promise that no
+// stretch longer than the resolution collides (it may clip a corner between two checks).
+inline ::testing::AssertionResult pathIsValid(const World& w, const std::vector<Eigen::VectorXd>& path,
+                                              double allowed_run = 0) {
+  if (path.size() < 2) return ::testing::AssertionFailure() << "path has " << path.size() << " configurations";
+  if ((path.front() - w.query().start).norm() > 1e-9)
+    return ::testing::AssertionFailure() << "path starts at " << path.front().transpose();
+  if ((path.back() - w.query().goal).norm() > 1e-9)
+    return ::testing::AssertionFailure() << "path ends at " << path.back().transpose();
+  const cspace::CollisionChecker independent(w.scenario.robot, w.scenario.environment, w.scenario.self_collision);
+  const double fine = 0.25 * w.scenario.resolution;
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const double length = w.space.distance(path[i], path[i + 1]);
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / fine)));
+    int last_free = -1;
+    for (int s = 0; s <= steps; ++s) {
+      const Eigen::VectorXd q = path[i] + (static_cast<double>(s) / steps) * (path[i + 1] - path[i]);
+      const int hit = independent.check(q);
+      if (hit == cspace::kFree) {
+        last_free = s;
+        continue;
+      }
+      // The colliding stretch reaches at least from the last free point to the next one.
+      const double run = (s + 1 - last_free) * length / steps;
+      if (s == 0 || s == steps || run > allowed_run)
+        return ::testing::AssertionFailure()
+               << "segment " << i << " hits " << hit << " at " << q.transpose() << " (colliding stretch "
+               << run << " > allowed " << allowed_run << ")";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+}  // namespace svmp::planners::test
