@@ -1,6 +1,6 @@
 #include "svm/kernel_column.hpp"
 
-#include "svm/smo_loops.hpp"
+#include "svm/simd_loops.hpp"
 
 #include <algorithm>
 #include <utility>

@@ -8,7 +8,7 @@
 
 #include "svm/kernel_cache.hpp"
 #include "svm/kernel_column.hpp"
-#include "svm/smo_loops.hpp"
+#include "svm/simd_loops.hpp"
 
 namespace svmp::svm {
 

@@ -1,6 +1,11 @@
 #include "svm/truncated_evaluator.hpp"
 
+#include "svm/simd_loops.hpp"
+
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <vector>
 #include <nanoflann.hpp>
 #include <stdexcept>
 
@@ -60,6 +65,73 @@ struct TruncatedRbfEvaluator::Tree {
         index(static_cast<int>(sv.rows()), cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
 };
 
+struct TruncatedRbfEvaluator::Blocks {
+  static constexpr int kBlock = 16;
+  std::vector<double> xs, coef, lo, hi;
+  loops::BlockedSupportVectors view{};
+
+  Blocks(const Eigen::MatrixXd& sv, const Eigen::VectorXd& c) {
+    const int d = static_cast<int>(sv.rows()), m = static_cast<int>(sv.cols());
+    std::vector<int> order(m);
+    std::iota(order.begin(), order.end(), 0);
+    std::vector<std::pair<int, int>> leaves;
+    split(sv, order, 0, m, leaves);
+    const int blocks = static_cast<int>(leaves.size());
+    const long stride = static_cast<long>(blocks) * kBlock;
+    xs.assign(static_cast<size_t>(d) * stride, 0.0);
+    coef.assign(stride, 0.0);
+    lo.assign(static_cast<size_t>(d) * blocks, 0.0);
+    hi.assign(static_cast<size_t>(d) * blocks, 0.0);
+    for (int b = 0; b < blocks; ++b) {
+      const auto [begin, end] = leaves[b];
+      for (int slot = 0; slot < kBlock; ++slot) {
+        // padding repeats the leaf's first point with coefficient 0
+        const int src = order[slot < end - begin ? begin + slot : begin];
+        const long col = static_cast<long>(b) * kBlock + slot;
+        for (int k = 0; k < d; ++k) xs[k * stride + col] = sv(k, src);
+        coef[col] = slot < end - begin ? c[src] : 0.0;
+      }
+      for (int k = 0; k < d; ++k) {
+        double l = sv(k, order[begin]), h = l;
+        for (int i = begin; i < end; ++i) {
+          l = std::min(l, sv(k, order[i]));
+          h = std::max(h, sv(k, order[i]));
+        }
+        lo[static_cast<size_t>(k) * blocks + b] = l;
+        hi[static_cast<size_t>(k) * blocks + b] = h;
+      }
+    }
+    view = {d, blocks, kBlock, stride, xs.data(), coef.data(), lo.data(), hi.data()};
+  }
+
+  // Median split on the widest coordinate, at a multiple of kBlock so leaves are full.
+  static void split(const Eigen::MatrixXd& sv, std::vector<int>& order, int begin, int end,
+                    std::vector<std::pair<int, int>>& leaves) {
+    if (end - begin <= kBlock) {
+      leaves.emplace_back(begin, end);
+      return;
+    }
+    int widest = 0;
+    double spread = -1;
+    for (int k = 0; k < sv.rows(); ++k) {
+      double l = sv(k, order[begin]), h = l;
+      for (int i = begin; i < end; ++i) {
+        l = std::min(l, sv(k, order[i]));
+        h = std::max(h, sv(k, order[i]));
+      }
+      if (h - l > spread) {
+        spread = h - l;
+        widest = k;
+      }
+    }
+    const int mid = begin + ((end - begin) / 2 + kBlock - 1) / kBlock * kBlock;
+    std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                     [&](int a, int b) { return sv(widest, a) < sv(widest, b); });
+    split(sv, order, begin, mid, leaves);
+    split(sv, order, mid, end, leaves);
+  }
+};
+
 TruncatedRbfEvaluator::TruncatedRbfEvaluator(const BinaryModel& model)
     : dim_(model.dim()), coef_(model.coefficients()), bias_(model.bias()) {
   if (!model.kernel().isPlainRbf())
@@ -69,7 +141,9 @@ TruncatedRbfEvaluator::TruncatedRbfEvaluator(const BinaryModel& model)
   gamma_ = model.kernel().gamma;
   squared_radius_ = 5.0 / gamma_;
   bound_ = coef_.cwiseAbs().sum() * std::exp(-5.0);
-  if (model.numSupportVectors() > 0) tree_ = std::make_unique<Tree>(model.supportVectors());
+  if (model.numSupportVectors() == 0) return;
+  if (dim_ <= 16) blocks_ = std::make_unique<Blocks>(model.supportVectors(), coef_);
+  else tree_ = std::make_unique<Tree>(model.supportVectors());
 }
 
 TruncatedRbfEvaluator::~TruncatedRbfEvaluator() = default;
@@ -77,6 +151,7 @@ TruncatedRbfEvaluator::TruncatedRbfEvaluator(TruncatedRbfEvaluator&&) noexcept =
 TruncatedRbfEvaluator& TruncatedRbfEvaluator::operator=(TruncatedRbfEvaluator&&) noexcept = default;
 
 double TruncatedRbfEvaluator::decision(const double* q) const {
+  if (blocks_) return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius_, nullptr);
   if (!tree_) return bias_;
   SumResultSet<false> rs{tree_->points, coef_.data(), q, -gamma_, squared_radius_};
   tree_->index.findNeighbors(rs, q, nanoflann::SearchParams(32, 0.0f, false));
@@ -86,6 +161,7 @@ double TruncatedRbfEvaluator::decision(const double* q) const {
 double TruncatedRbfEvaluator::decisionAndGradient(const double* q, double* grad) const {
   const int d = dim();
   for (int k = 0; k < d; ++k) grad[k] = 0.0;
+  if (blocks_) return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius_, grad);
   if (!tree_) return bias_;
   SumResultSet<true> rs{tree_->points, coef_.data(), q, -gamma_, squared_radius_};
   rs.grad = grad;

@@ -1,7 +1,14 @@
 // Truncated evaluation of an RBF decision function (thesis ch. 4.3.1): terms whose kernel value
-// exp(-gamma d^2) is below exp(-5) are treated as zero. A k-d tree (nanoflann) over the support
-// vectors finds the terms with SQUARED distance d^2 < 5/gamma; the sum and its gradient are
-// accumulated inside the search's result set, so nothing is allocated per term.
+// exp(-gamma d^2) is below exp(-5) are treated as zero, i.e. only SQUARED distances d^2 < 5/gamma
+// count.
+//
+// For d <= 16 the support vectors are split by a k-d tree (median splits on the widest coordinate)
+// into leaves of 16, stored coordinate-major with their bounding boxes; a query skips every leaf
+// whose box is at squared distance >= 5/gamma and sums the others with vector instructions, masking
+// the terms outside the radius. Near the decision boundary ~160 of 1,400 support vectors (d = 6)
+// are inside the radius, and evaluating whole leaves with 4-lane vectors was ~10x faster than
+// nanoflann's radius search with one scalar exponential per neighbour (docs/svm.md).
+// For d > 16 a nanoflann k-d tree radius search sums the terms inside its result set.
 //
 // The truncated F differs from the full sum by at most truncationBound() = sum_i |coef_i| exp(-5).
 // Thread-safety: decision() and decisionAndGradient() are const and keep all scratch on the stack
@@ -34,13 +41,15 @@ class TruncatedRbfEvaluator {
 
  private:
   struct Tree;
+  struct Blocks;
   int dim_ = 0;
   Eigen::VectorXd coef_;
   double bias_ = 0.0;
   double gamma_ = 1.0;
   double squared_radius_ = 5.0;
   double bound_ = 0.0;
-  std::unique_ptr<Tree> tree_;
+  std::unique_ptr<Tree> tree_;      // d > 16
+  std::unique_ptr<Blocks> blocks_;  // d <= 16
 };
 
 }  // namespace svmp::svm

@@ -79,7 +79,10 @@ WarmCase makeWarmCase(int d, int n) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> uni(0, 1);
   std::normal_distribution<double> normal(0, 1);
-  const auto extra = testing::makeBallProblem(d, n / 20, kClasses, 77);
+  // Same seed, more samples: the same balls, and the first n samples are p's.
+  const auto more = testing::makeBallProblem(d, n + n / 20, kClasses, 1000 + d);
+  const Eigen::MatrixXd extra_X = more.X.rightCols(n / 20);
+  const std::vector<int> extra_labels(more.labels.begin() + n, more.labels.end());
   std::vector<Eigen::Index> prev;
   std::vector<Eigen::VectorXd> cols;
   std::vector<double> labels;
@@ -96,9 +99,9 @@ WarmCase makeWarmCase(int d, int n) {
     labels.push_back(y[i]);
     prev.push_back(i);
   }
-  for (Eigen::Index i = 0; i < extra.X.cols(); ++i) {
-    cols.push_back(extra.X.col(i));
-    labels.push_back(extra.labels[i] == 1 ? 1.0 : -1.0);
+  for (Eigen::Index i = 0; i < extra_X.cols(); ++i) {
+    cols.push_back(extra_X.col(i));
+    labels.push_back(extra_labels[i] == 1 ? 1.0 : -1.0);
     prev.push_back(-1);
   }
   WarmCase w;

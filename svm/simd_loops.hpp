@@ -1,5 +1,5 @@
-// The O(n) loops of one SMO iteration and the RBF kernel column, vectorised and dispatched at run
-// time to AVX2 (4 lanes) or baseline SSE2 (2 lanes). Working-set selection is WSS2 of Fan, Chen,
+// The O(n) loops of one SMO iteration, the RBF kernel column and the truncated RBF sum, vectorised
+// and dispatched at run time to AVX2 (4 lanes) or baseline SSE2 (2 lanes). Working-set selection is WSS2 of Fan, Chen,
 // Lin, JMLR 6 (2005); the gradient update is libsvm's (Chang & Lin 2011, sec. 4.1).
 #pragma once
 
@@ -32,6 +32,19 @@ void rbfColumn(const double* coords, long stride, int d, const double* z, double
                float* out);
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
                double* out);
+
+// Truncated RBF sum over blocks of support vectors (thesis ch. 4.3.1): terms with squared distance
+// d^2 >= r2 are zero. Blocks whose bounding box is at squared distance >= r2 are skipped.
+// xs: coordinates, row k at xs + k * stride, blocks of `block` consecutive columns (block is a
+// multiple of 4; padding columns have coefficient 0). lo/hi: bounding boxes, row k at k * blocks.
+// Returns sum coef_s exp(-gamma d_s^2); grad (if not null) gets its gradient w.r.t. q.
+struct BlockedSupportVectors {
+  int d, blocks, block;
+  long stride;
+  const double *xs, *coef, *lo, *hi;
+};
+double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double gamma, double r2,
+                       double* grad);
 
 bool usingAvx2();
 
