@@ -6,7 +6,7 @@
 // shared across problems: an RBF column costs ~1 ns per entry with the vectorised exponential, while
 // a shared cache would need locking and a gather through each solver's own shrinking permutation,
 // which costs about as much as recomputing. Classes train in parallel (OpenMP, `threads`), each
-// with its own column cache of SolverOptions::cache_mb / threads MB (same total memory as one).
+// with its own column cache of SolverOptions::cache_mb (memory: threads x cache_mb).
 #pragma once
 
 #include <Eigen/Core>

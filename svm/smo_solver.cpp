@@ -77,7 +77,10 @@ class SmoSolver {
     for (int i = 0; i < n_; ++i) index_[i] = i;
   }
 
+  // A warm start has an accurate gradient from the start, so shrinking may begin at once: the
+  // kernel columns are then computed over the active set only (libsvm waits 1000 iterations).
   void setStart(const Eigen::VectorXd& alpha, const Eigen::VectorXd& G, const Eigen::VectorXd& Gb) {
+    shrink_at_start_ = true;
     for (int i = 0; i < n_; ++i) {
       alpha_[i] = alpha[i];
       G_[i] = G[i];
@@ -119,6 +122,7 @@ class SmoSolver {
   int n_;
   int active_;
   bool unshrink_ = false;
+  bool shrink_at_start_ = false;
   KernelCache cache_;
   std::vector<double> y_, C_, alpha_, G_, G_bar_, scratch_;
   // I_up / I_low (Keerthi et al.) as additive penalties: 0 when in the set, -inf / +inf when not.
@@ -272,8 +276,9 @@ void SmoSolver::reconstructGradient() {
     for (int i = 0; i < active_; ++i) {
       if (w[i] == 0.0) continue;
       const float* Ki = column(i, n_);
-      const double wi = w[i];
-      for (int t = active_; t < n_; ++t) G_[t] += y_[t] * wi * static_cast<double>(Ki[t]);
+      // G_t += y_t w_i K_it over the inactive part (the two-column update with a zero weight)
+      loops::updateGradient(n_ - active_, G_.data() + active_, y_.data() + active_, Ki + active_,
+                            Ki + active_, w[i], 0.0);
     }
   }
 }
@@ -325,7 +330,7 @@ SolverResult SmoSolver::run() {
   for (int i = 0; i < n_; ++i) updateMasks(i);
   SolverResult result;
   long iter = 0;
-  int counter = std::min(n_, 1000) + 1;
+  int counter = shrink_at_start_ ? 1 : std::min(n_, 1000) + 1;
   result.status = SolverStatus::kOptimal;
   while (true) {
     if (iter >= opt_.max_iterations) {
