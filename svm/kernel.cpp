@@ -8,11 +8,16 @@ namespace svmp::svm {
 
 const char* kernelTypeName(KernelType type) {
   switch (type) {
-    case KernelType::kLinear: return "linear";
-    case KernelType::kPolynomial: return "polynomial";
-    case KernelType::kRbf: return "rbf";
-    case KernelType::kSigmoid: return "sigmoid";
-    case KernelType::kRationalQuadratic: return "rational-quadratic";
+    case KernelType::kLinear:
+      return "linear";
+    case KernelType::kPolynomial:
+      return "polynomial";
+    case KernelType::kRbf:
+      return "rbf";
+    case KernelType::kSigmoid:
+      return "sigmoid";
+    case KernelType::kRationalQuadratic:
+      return "rational-quadratic";
   }
   return "unknown";
 }

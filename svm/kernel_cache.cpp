@@ -14,8 +14,14 @@ KernelCache::KernelCache(int n, double size_mb) : columns_(n) {
 
 void KernelCache::unlink(int i) {
   Column& c = columns_[i];
-  if (c.prev >= 0) columns_[c.prev].next = c.next; else oldest_ = c.next;
-  if (c.next >= 0) columns_[c.next].prev = c.prev; else newest_ = c.prev;
+  if (c.prev >= 0)
+    columns_[c.prev].next = c.next;
+  else
+    oldest_ = c.next;
+  if (c.next >= 0)
+    columns_[c.next].prev = c.prev;
+  else
+    newest_ = c.prev;
   c.prev = c.next = -1;
 }
 
@@ -23,7 +29,10 @@ void KernelCache::linkNewest(int i) {
   Column& c = columns_[i];
   c.prev = newest_;
   c.next = -1;
-  if (newest_ >= 0) columns_[newest_].next = i; else oldest_ = i;
+  if (newest_ >= 0)
+    columns_[newest_].next = i;
+  else
+    oldest_ = i;
   newest_ = i;
 }
 
@@ -72,8 +81,10 @@ void KernelCache::swapIndex(int i, int j) {
     const int next = columns_[h].next;
     Column& c = columns_[h];
     if (c.len > i) {
-      if (c.len > j) std::swap(c.data[i], c.data[j]);
-      else evict(h);
+      if (c.len > j)
+        std::swap(c.data[i], c.data[j]);
+      else
+        evict(h);
     }
     h = next;
   }

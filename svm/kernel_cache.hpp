@@ -3,8 +3,8 @@
 // Same policy as libsvm's Cache (Chang & Lin, "LIBSVM: a library for support vector machines",
 // ACM TIST 2011, sec. 5.1): a column is kept with the length it was last requested at (the active
 // set size under shrinking) and extended on demand; swapIndex() follows the solver's permutation.
-// Float halves the memory per entry, so twice as many columns fit; the solver accumulates in double.
-// Not thread-safe: one cache per solver.
+// Float halves the memory per entry, so twice as many columns fit; the solver accumulates in
+// double. Not thread-safe: one cache per solver.
 #pragma once
 
 #include <memory>

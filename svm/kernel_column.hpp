@@ -1,12 +1,13 @@
 // Kernel columns over a dense sample set: k(z, x_t) for a range of samples t.
 //
 // The hot path of SMO (thesis eq. 2.10 solved as in Fan, Chen, Lin, JMLR 2005) is computing kernel
-// columns. Samples are stored coordinate-major (one contiguous array per coordinate), so for the RBF
-// kernel the squared distances of a whole column accumulate with unit-stride vector loads and the
-// exponential runs over contiguous memory (expNonPositive vectorises). Distances are formed from
-// differences rather than |x|^2 + |z|^2 - 2x'z: in this layout both cost the same and differences do
-// not cancel for near points, so no squared norms are needed for RBF; the diagonal k(x_i, x_i) is
-// precomputed for every kernel. swap() keeps the storage in the solver's (shrinking) order.
+// columns. Samples are stored coordinate-major (one contiguous array per coordinate), so for the
+// RBF kernel the squared distances of a whole column accumulate with unit-stride vector loads and
+// the exponential runs over contiguous memory (expNonPositive vectorises). Distances are formed
+// from differences rather than |x|^2 + |z|^2 - 2x'z: in this layout both cost the same and
+// differences do not cancel for near points, so no squared norms are needed for RBF; the diagonal
+// k(x_i, x_i) is precomputed for every kernel. swap() keeps the storage in the solver's (shrinking)
+// order.
 #pragma once
 
 #include <Eigen/Core>

@@ -7,9 +7,12 @@
 
 namespace svmp::svm {
 
-BinaryModel::BinaryModel(Eigen::MatrixXd support_vectors, Eigen::VectorXd coefficients,
-                         double bias, const Kernel& kernel)
-    : sv_(std::move(support_vectors)), coef_(std::move(coefficients)), bias_(bias), kernel_(kernel) {
+BinaryModel::BinaryModel(Eigen::MatrixXd support_vectors, Eigen::VectorXd coefficients, double bias,
+                         const Kernel& kernel)
+    : sv_(std::move(support_vectors)),
+      coef_(std::move(coefficients)),
+      bias_(bias),
+      kernel_(kernel) {
   if (sv_.cols() != coef_.size()) {
     std::ostringstream msg;
     msg << "BinaryModel: " << sv_.cols() << " support vectors but " << coef_.size()
@@ -50,7 +53,8 @@ double BinaryModel::decision(const double* q) const {
     }
     return f;
   }
-  for (int s = 0; s < numSupportVectors(); ++s) f += coef_[s] * kernel_.value(sv_.col(s).data(), q, d);
+  for (int s = 0; s < numSupportVectors(); ++s)
+    f += coef_[s] * kernel_.value(sv_.col(s).data(), q, d);
   return f;
 }
 

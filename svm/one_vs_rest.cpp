@@ -24,8 +24,8 @@ void oneVsRestProblem(const std::vector<int>& labels, int positive_class, double
 
 OneVsRestModel trainOneVsRest(const Eigen::MatrixXd& X, const std::vector<int>& labels,
                               const Kernel& kernel, double C,
-                              const std::map<int, double>& class_weight,
-                              const SolverOptions& opt, int threads) {
+                              const std::map<int, double>& class_weight, const SolverOptions& opt,
+                              int threads) {
   std::ostringstream msg;
   if (static_cast<Eigen::Index>(labels.size()) != X.cols()) {
     msg << "trainOneVsRest: " << labels.size() << " labels for " << X.cols() << " samples";

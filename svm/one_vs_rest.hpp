@@ -3,10 +3,11 @@
 //
 // The problems share the samples and the kernel; only labels and C differ. What is shared: the
 // validated data and one coordinate-major copy per problem built from it. Kernel columns are NOT
-// shared across problems: an RBF column costs ~1 ns per entry with the vectorised exponential, while
-// a shared cache would need locking and a gather through each solver's own shrinking permutation,
-// which costs about as much as recomputing. Classes train in parallel (OpenMP, `threads`), each
-// with its own column cache of SolverOptions::cache_mb (memory: threads x cache_mb).
+// shared across problems: an RBF column costs ~1 ns per entry with the vectorised exponential,
+// while a shared cache would need locking and a gather through each solver's own shrinking
+// permutation, which costs about as much as recomputing. Classes train in parallel (OpenMP,
+// `threads`), each with its own column cache of SolverOptions::cache_mb (memory: threads x
+// cache_mb).
 #pragma once
 
 #include <Eigen/Core>
@@ -29,8 +30,8 @@ struct OneVsRestModel {
 // Throws std::invalid_argument on bad input.
 OneVsRestModel trainOneVsRest(const Eigen::MatrixXd& X, const std::vector<int>& labels,
                               const Kernel& kernel, double C,
-                              const std::map<int, double>& class_weight,
-                              const SolverOptions& opt, int threads);
+                              const std::map<int, double>& class_weight, const SolverOptions& opt,
+                              int threads);
 
 // Binary labels (+1 for `positive_class`, -1 otherwise) and per-sample C of one OvR problem.
 void oneVsRestProblem(const std::vector<int>& labels, int positive_class, double C,

@@ -101,7 +101,8 @@ SVMP_INLINE typename V<L>::D vexp(typename V<L>::D x) {
 
 // Lane winner: largest value, smallest index on ties (deterministic for any L).
 template <int L, bool kMax>
-SVMP_INLINE void reduceLanes(typename V<L>::D best, typename V<L>::D idx, double& value, int& index) {
+SVMP_INLINE void reduceLanes(typename V<L>::D best, typename V<L>::D idx, double& value,
+                             int& index) {
   for (int l = 0; l < L; ++l) {
     const bool better = kMax ? best[l] > value : best[l] < value;
     if (better || (best[l] == value && idx[l] < index)) {
@@ -189,7 +190,8 @@ SVMP_INLINE void updateGradientImpl(int m, double* G, const double* y, const flo
   const D vwi = splat<L>(wi), vwj = splat<L>(wj);
   int t = 0;
   for (; t + L <= m; t += L)
-    store<L>(G + t, load<L>(G + t) + load<L>(y + t) * (vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t)));
+    store<L>(G + t,
+             load<L>(G + t) + load<L>(y + t) * (vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t)));
   for (; t < m; ++t)
     G[t] += y[t] * (wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]));
 }
@@ -250,8 +252,14 @@ SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const do
         const D c = splat<L>(q[k]) - load<L>(sv.xs + k * sv.stride + s);
         dist += c * c;
       }
+      // Skip the exponential when no lane is inside the radius: leaves are spatially sorted, so
+      // in-radius support vectors come in runs and most 4-groups of a passing leaf are all out.
+      const auto inside = dist < vr2;
+      bool any = false;
+      for (int l = 0; l < L; ++l) any |= inside[l] != 0;
+      if (!any) continue;
       D term = load<L>(sv.coef + s) * vexp<L>(ng * dist);
-      term = dist < vr2 ? term : zero;
+      term = inside ? term : zero;
       f += term;
       // sum term * x_k (reloaded from L1) instead of keeping d differences in registers
       if constexpr (kGrad)
@@ -291,8 +299,8 @@ SVMP_AVX2 void rbfColumnAvx2(const double* coords, long stride, int d, const dou
   rbfColumnImpl<4>(coords, stride, d, z, neg_gamma, len, out);
 }
 
-SVMP_AVX2 double truncatedRbfSumAvx2(const BlockedSupportVectors& sv, const double* q,
-                                     double gamma, double r2, double* grad) {
+SVMP_AVX2 double truncatedRbfSumAvx2(const BlockedSupportVectors& sv, const double* q, double gamma,
+                                     double r2, double* grad) {
   return grad ? truncatedRbfSumImpl<4, true>(sv, q, gamma, r2, grad)
               : truncatedRbfSumImpl<4, false>(sv, q, gamma, r2, grad);
 }
@@ -315,20 +323,26 @@ SelectJ selectJ(int m, const double* low, const double* y, const double* G, cons
 
 void updateGradient(int m, double* G, const double* y, const float* Ki, const float* Kj, double wi,
                     double wj) {
-  if (kHaveAvx2) updateGradientAvx2(m, G, y, Ki, Kj, wi, wj);
-  else updateGradientImpl<2>(m, G, y, Ki, Kj, wi, wj);
+  if (kHaveAvx2)
+    updateGradientAvx2(m, G, y, Ki, Kj, wi, wj);
+  else
+    updateGradientImpl<2>(m, G, y, Ki, Kj, wi, wj);
 }
 
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
                float* out) {
-  if (kHaveAvx2) rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
-  else rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
+  if (kHaveAvx2)
+    rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
+  else
+    rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
 }
 
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
                double* out) {
-  if (kHaveAvx2) rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
-  else rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
+  if (kHaveAvx2)
+    rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
+  else
+    rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
 }
 
 }  // namespace svmp::svm::loops

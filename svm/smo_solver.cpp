@@ -38,8 +38,10 @@ void validateProblem(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const E
   if (!X.allFinite()) fail("X contains NaN or Inf");
   bool has_pos = false, has_neg = false;
   for (Eigen::Index i = 0; i < y.size(); ++i) {
-    if (y[i] == 1.0) has_pos = true;
-    else if (y[i] == -1.0) has_neg = true;
+    if (y[i] == 1.0)
+      has_pos = true;
+    else if (y[i] == -1.0)
+      has_neg = true;
     else {
       msg << "label y[" << i << "] = " << y[i] << "; labels must be +1 or -1";
       fail(msg.str());
@@ -144,8 +146,8 @@ bool SmoSolver::selectWorkingSet(int& out_i, int& out_j) {
   const double gmax = best_i.value;
   // j = argmin over t in I_low with y_t G_t > -gmax of -(gmax + y_t G_t)^2 / curvature (WSS2)
   const float* Ki = column(i, m);
-  const loops::SelectJ best_j = loops::selectJ(m, low, y, G, data_.diagonalData(), Ki,
-                                               data_.diagonal(i), gmax, kTau);
+  const loops::SelectJ best_j =
+      loops::selectJ(m, low, y, G, data_.diagonalData(), Ki, data_.diagonal(i), gmax, kTau);
   if (gmax + best_j.gmax2 < opt_.eps || best_j.j < 0) return false;
   const int j = best_j.j;
   out_i = i;
@@ -170,14 +172,26 @@ void SmoSolver::update(int i, int j) {
     ai += delta;
     aj += delta;
     if (diff > 0) {
-      if (aj < 0) { aj = 0; ai = diff; }
+      if (aj < 0) {
+        aj = 0;
+        ai = diff;
+      }
     } else {
-      if (ai < 0) { ai = 0; aj = -diff; }
+      if (ai < 0) {
+        ai = 0;
+        aj = -diff;
+      }
     }
     if (diff > Ci - Cj) {
-      if (ai > Ci) { ai = Ci; aj = Ci - diff; }
+      if (ai > Ci) {
+        ai = Ci;
+        aj = Ci - diff;
+      }
     } else {
-      if (aj > Cj) { aj = Cj; ai = Cj + diff; }
+      if (aj > Cj) {
+        aj = Cj;
+        ai = Cj + diff;
+      }
     }
   } else {
     double quad = data_.diagonal(i) + data_.diagonal(j) - 2.0 * kij;
@@ -187,14 +201,26 @@ void SmoSolver::update(int i, int j) {
     ai -= delta;
     aj += delta;
     if (sum > Ci) {
-      if (ai > Ci) { ai = Ci; aj = sum - Ci; }
+      if (ai > Ci) {
+        ai = Ci;
+        aj = sum - Ci;
+      }
     } else {
-      if (aj < 0) { aj = 0; ai = sum; }
+      if (aj < 0) {
+        aj = 0;
+        ai = sum;
+      }
     }
     if (sum > Cj) {
-      if (aj > Cj) { aj = Cj; ai = sum - Cj; }
+      if (aj > Cj) {
+        aj = Cj;
+        ai = sum - Cj;
+      }
     } else {
-      if (ai < 0) { ai = 0; aj = sum; }
+      if (ai < 0) {
+        ai = 0;
+        aj = sum;
+      }
     }
   }
   // G_t += Q_ti dA_i + Q_tj dA_j with Q_ti = y_t y_i K_ti.
@@ -304,9 +330,15 @@ double SmoSolver::bias() const {
   for (int i = 0; i < active_; ++i) {
     const double yg = y_[i] * G_[i];
     if (isUpper(i)) {
-      if (y_[i] < 0) ub = std::min(ub, yg); else lb = std::max(lb, yg);
+      if (y_[i] < 0)
+        ub = std::min(ub, yg);
+      else
+        lb = std::max(lb, yg);
     } else if (isLower(i)) {
-      if (y_[i] > 0) ub = std::min(ub, yg); else lb = std::max(lb, yg);
+      if (y_[i] > 0)
+        ub = std::min(ub, yg);
+      else
+        lb = std::max(lb, yg);
     } else {
       ++nr_free;
       sum_free += yg;
@@ -382,11 +414,14 @@ SolverResult SmoSolver::run() {
 
 std::string SolverOptions::validate() const {
   std::ostringstream msg;
-  if (!(eps > 0.0) || !std::isfinite(eps)) msg << "eps must be positive and finite, got " << eps;
-  else if (max_iterations <= 0) msg << "max_iterations must be positive, got " << max_iterations;
+  if (!(eps > 0.0) || !std::isfinite(eps))
+    msg << "eps must be positive and finite, got " << eps;
+  else if (max_iterations <= 0)
+    msg << "max_iterations must be positive, got " << max_iterations;
   else if (!(cache_mb >= 0.0) || !std::isfinite(cache_mb))
     msg << "cache_mb must be >= 0 and finite, got " << cache_mb;
-  else if (threads < 1) msg << "threads must be >= 1, got " << threads;
+  else if (threads < 1)
+    msg << "threads must be >= 1, got " << threads;
   return msg.str();
 }
 
@@ -400,8 +435,8 @@ std::string SolverResult::report() const {
 }
 
 SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
-                         const Eigen::VectorXd& C, const Kernel& kernel,
-                         const SolverOptions& opt, const WarmStart* warm) {
+                         const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
+                         const WarmStart* warm) {
   validateProblem(X, y, C, kernel, opt);
   KernelColumns data(X, kernel, opt.threads);
   SmoSolver solver(data, y, C, opt);

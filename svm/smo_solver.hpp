@@ -4,9 +4,9 @@
 // Working-set selection: second-order WSS2 of Fan, Chen, Lin, "Working set selection using second
 // order information for training SVM", JMLR 6 (2005), with libsvm's safeguard tau = 1e-12 for
 // non-positive curvature (needed for indefinite kernels, e.g. a truncated or sigmoid Gram matrix).
-// Shrinking, gradient reconstruction and the bias follow Chang & Lin, "LIBSVM: a library for support
-// vector machines", ACM TIST 2 (2011), sec. 4.1.2 (stopping), 5.1 (shrinking) and 4.1.5 (bias).
-// Stops when the maximal violating pair gap m(alpha) - M(alpha) < eps.
+// Shrinking, gradient reconstruction and the bias follow Chang & Lin, "LIBSVM: a library for
+// support vector machines", ACM TIST 2 (2011), sec. 4.1.2 (stopping), 5.1 (shrinking) and 4.1.5
+// (bias). Stops when the maximal violating pair gap m(alpha) - M(alpha) < eps.
 //
 // Thread-safety: solveBinary has no shared state; several calls may run concurrently.
 #pragma once
@@ -21,40 +21,40 @@
 namespace svmp::svm {
 
 struct SolverOptions {
-  double eps = 1e-3;                  // stopping tolerance on the maximal violating pair gap
-  long max_iterations = 10'000'000;   // reported as SolverStatus::kIterationLimit when reached
-  double cache_mb = 100;              // kernel column cache (float entries)
+  double eps = 1e-3;                 // stopping tolerance on the maximal violating pair gap
+  long max_iterations = 10'000'000;  // reported as SolverStatus::kIterationLimit when reached
+  double cache_mb = 100;             // kernel column cache (float entries)
   bool shrinking = true;
-  int threads = 1;                    // OpenMP threads for kernel columns of >= 8192 entries
+  int threads = 1;  // OpenMP threads for kernel columns of >= 8192 entries
 
-  std::string validate() const;       // "" when OK, else what is wrong
+  std::string validate() const;  // "" when OK, else what is wrong
 };
 
 enum class SolverStatus { kOptimal, kIterationLimit };
 
 struct SolverResult {
-  Eigen::VectorXd alpha;           // dual variables, original sample order
-  double bias = 0.0;               // b of F(q) = sum_i y_i alpha_i k(x_i, q) + b; libsvm's -rho
+  Eigen::VectorXd alpha;  // dual variables, original sample order
+  double bias = 0.0;      // b of F(q) = sum_i y_i alpha_i k(x_i, q) + b; libsvm's -rho
   // Dual objective as libsvm reports it: 0.5 alpha'Q alpha - e'alpha (the negative of eq. 2.10).
   double objective = 0.0;
   long iterations = 0;
   SolverStatus status = SolverStatus::kOptimal;
-  Eigen::VectorXd gradient;        // G = Q alpha - e (all samples, reconstructed at the end)
-  Eigen::VectorXd gradient_bound;  // G_bar = sum over alpha_j = C_j of C_j Q_j (for warm start)
-  double violation = 0.0;          // final m(alpha) - M(alpha)
-  int support_vectors = 0;         // alpha_i > 0
-  int bounded_support_vectors = 0; // alpha_i = C_i
+  Eigen::VectorXd gradient;         // G = Q alpha - e (all samples, reconstructed at the end)
+  Eigen::VectorXd gradient_bound;   // G_bar = sum over alpha_j = C_j of C_j Q_j (for warm start)
+  double violation = 0.0;           // final m(alpha) - M(alpha)
+  int support_vectors = 0;          // alpha_i > 0
+  int bounded_support_vectors = 0;  // alpha_i = C_i
   long long cache_hits = 0, cache_misses = 0;
-  WarmStartCounts warm;            // what the warm start changed (zero for a cold start)
+  WarmStartCounts warm;  // what the warm start changed (zero for a cold start)
 
-  std::string report() const;      // one line
+  std::string report() const;  // one line
 };
 
 // Throws std::invalid_argument for bad input (sizes, NaN/Inf, labels not +-1, one class only,
 // C <= 0, bad kernel parameters, bad options, inconsistent warm start).
 SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
-                         const Eigen::VectorXd& C, const Kernel& kernel,
-                         const SolverOptions& opt, const WarmStart* warm = nullptr);
+                         const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
+                         const WarmStart* warm = nullptr);
 
 // Warm start for a new problem from the previous problem (X, y, C) and its solution.
 // previous_index[i] is the previous index of new sample i, or -1 for an added sample.

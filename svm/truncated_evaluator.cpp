@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
-#include <vector>
 #include <nanoflann.hpp>
+#include <numeric>
 #include <stdexcept>
+#include <vector>
 
 namespace svmp::svm {
 
@@ -19,11 +19,14 @@ struct ColumnCloud {
   size_t kdtree_get_point_count() const { return static_cast<size_t>(points->cols()); }
   double kdtree_get_pt(size_t i, size_t k) const { return (*points)(k, i); }
   template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
 };
 
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, ColumnCloud>,
-                                                   ColumnCloud, -1, size_t>;
+using KdTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, ColumnCloud>,
+                                        ColumnCloud, -1, size_t>;
 
 // Result set that sums coef * exp(-gamma d^2) (and the gradient) as points arrive.
 template <bool kWithGradient>
@@ -135,15 +138,17 @@ struct TruncatedRbfEvaluator::Blocks {
 TruncatedRbfEvaluator::TruncatedRbfEvaluator(const BinaryModel& model)
     : dim_(model.dim()), coef_(model.coefficients()), bias_(model.bias()) {
   if (!model.kernel().isPlainRbf())
-    throw std::invalid_argument(std::string("TruncatedRbfEvaluator: needs a plain RBF kernel, got ") +
-                                kernelTypeName(model.kernel().type) +
-                                (model.kernel().block > 0 ? " (block-sum)" : ""));
+    throw std::invalid_argument(
+        std::string("TruncatedRbfEvaluator: needs a plain RBF kernel, got ") +
+        kernelTypeName(model.kernel().type) + (model.kernel().block > 0 ? " (block-sum)" : ""));
   gamma_ = model.kernel().gamma;
   squared_radius_ = 5.0 / gamma_;
   bound_ = coef_.cwiseAbs().sum() * std::exp(-5.0);
   if (model.numSupportVectors() == 0) return;
-  if (dim_ <= 16) blocks_ = std::make_unique<Blocks>(model.supportVectors(), coef_);
-  else tree_ = std::make_unique<Tree>(model.supportVectors());
+  if (dim_ <= 16)
+    blocks_ = std::make_unique<Blocks>(model.supportVectors(), coef_);
+  else
+    tree_ = std::make_unique<Tree>(model.supportVectors());
 }
 
 TruncatedRbfEvaluator::~TruncatedRbfEvaluator() = default;
@@ -151,7 +156,8 @@ TruncatedRbfEvaluator::TruncatedRbfEvaluator(TruncatedRbfEvaluator&&) noexcept =
 TruncatedRbfEvaluator& TruncatedRbfEvaluator::operator=(TruncatedRbfEvaluator&&) noexcept = default;
 
 double TruncatedRbfEvaluator::decision(const double* q) const {
-  if (blocks_) return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius_, nullptr);
+  if (blocks_)
+    return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius_, nullptr);
   if (!tree_) return bias_;
   SumResultSet<false> rs{tree_->points, coef_.data(), q, -gamma_, squared_radius_};
   tree_->index.findNeighbors(rs, q, nanoflann::SearchParams(32, 0.0f, false));
@@ -161,7 +167,8 @@ double TruncatedRbfEvaluator::decision(const double* q) const {
 double TruncatedRbfEvaluator::decisionAndGradient(const double* q, double* grad) const {
   const int d = dim();
   for (int k = 0; k < d; ++k) grad[k] = 0.0;
-  if (blocks_) return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius_, grad);
+  if (blocks_)
+    return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius_, grad);
   if (!tree_) return bias_;
   SumResultSet<true> rs{tree_->points, coef_.data(), q, -gamma_, squared_radius_};
   rs.grad = grad;

@@ -15,8 +15,8 @@ std::string WarmStart::validate(Eigen::Index n, Eigen::Index d) const {
   } else if (y.size() != m || C.size() != m || alpha.size() != m || gradient.size() != m ||
              gradient_bound.size() != m) {
     msg << "warm start: previous X has " << m << " samples but y/C/alpha/gradient/gradient_bound "
-        << "have " << y.size() << "/" << C.size() << "/" << alpha.size() << "/"
-        << gradient.size() << "/" << gradient_bound.size();
+        << "have " << y.size() << "/" << C.size() << "/" << alpha.size() << "/" << gradient.size()
+        << "/" << gradient_bound.size();
   } else if (static_cast<Eigen::Index>(previous_index.size()) != n) {
     msg << "warm start: previous_index has " << previous_index.size() << " entries for " << n
         << " new samples";

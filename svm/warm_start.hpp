@@ -3,10 +3,10 @@
 // The previous dual solution is mapped onto the new samples and made feasible (0 <= alpha_i <= C_i,
 // sum_i y_i alpha_i = 0 restored by lowering the largest multipliers of the class in excess); the
 // gradient G = Q alpha - e and the bound part G_bar = sum_{alpha_j = C_j} C_j Q_j (libsvm's
-// shrinking bookkeeping, Chang & Lin 2011 sec. 5.1) are updated incrementally: one kernel column per
-// multiplier that changed (removed, moved or adjusted sample with alpha > 0), and one row over the
-// support vectors for each moved or added sample. SMO then converges to the same optimum as a cold
-// start (the dual of thesis eq. 2.10 is convex), in far fewer iterations.
+// shrinking bookkeeping, Chang & Lin 2011 sec. 5.1) are updated incrementally: one kernel column
+// per multiplier that changed (removed, moved or adjusted sample with alpha > 0), and one row over
+// the support vectors for each moved or added sample. SMO then converges to the same optimum as a
+// cold start (the dual of thesis eq. 2.10 is convex), in far fewer iterations.
 #pragma once
 
 #include <Eigen/Core>

@@ -59,7 +59,8 @@ TEST(Kernel, GradientMatchesCentralDifferences) {
         std::vector<double> yp = y, ym = y;
         yp[i] += h;
         ym[i] -= h;
-        const double fd = (k.value(x.data(), yp.data(), d) - k.value(x.data(), ym.data(), d)) / (2 * h);
+        const double fd =
+            (k.value(x.data(), yp.data(), d) - k.value(x.data(), ym.data(), d)) / (2 * h);
         EXPECT_NEAR(g[i], fd, 1e-6 * (1 + std::abs(fd)))
             << kernelTypeName(k.type) << " block " << k.block << " coordinate " << i;
       }

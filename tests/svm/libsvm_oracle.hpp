@@ -25,8 +25,11 @@ inline void libsvmSilence() {
 class LibsvmProblem {
  public:
   LibsvmProblem(const Eigen::MatrixXd& X, const Eigen::VectorXd& y)
-      : d_(static_cast<int>(X.rows())), n_(static_cast<int>(X.cols())),
-        nodes_(static_cast<size_t>(n_) * (d_ + 1)), rows_(n_), labels_(y.data(), y.data() + n_) {
+      : d_(static_cast<int>(X.rows())),
+        n_(static_cast<int>(X.cols())),
+        nodes_(static_cast<size_t>(n_) * (d_ + 1)),
+        rows_(n_),
+        labels_(y.data(), y.data() + n_) {
     for (int i = 0; i < n_; ++i) {
       svm_node* row = &nodes_[static_cast<size_t>(i) * (d_ + 1)];
       for (int k = 0; k < d_; ++k) row[k] = svm_node{k + 1, X(k, i)};
@@ -93,7 +96,7 @@ inline LibsvmResult libsvmTrain(const LibsvmProblem& prob, const Eigen::VectorXd
   std::vector<int> idx(model->l);
   svm_get_sv_indices(model.get(), idx.data());
   for (int s = 0; s < model->l; ++s) {
-    const int i = idx[s] - 1;  // 1-based
+    const int i = idx[s] - 1;                         // 1-based
     r.alpha[i] = model->sv_coef[0][s] * y[i] * sign;  // sv_coef = y_lib alpha
   }
   r.bias = -sign * model->rho[0];

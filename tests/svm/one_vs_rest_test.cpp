@@ -49,7 +49,8 @@ TEST(OneVsRestVsLibsvm, MatchesSeparateLibsvmRuns) {
   const auto p = testing::makeBallProblem(6, 3000, 3, 32);
   const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
   const double C = 10.0;
-  for (const std::map<int, double>& w : {std::map<int, double>{}, std::map<int, double>{{1, 2.5}}}) {
+  for (const std::map<int, double>& w :
+       {std::map<int, double>{}, std::map<int, double>{{1, 2.5}}}) {
     const OneVsRestModel ovr = trainOneVsRest(p.X, p.labels, k, C, w, {}, 2);
     for (int c = 0; c < 3; ++c) {
       if (!w.empty() && ovr.classes[c] != 1) continue;
@@ -59,7 +60,8 @@ TEST(OneVsRestVsLibsvm, MatchesSeparateLibsvmRuns) {
       std::map<int, double> lib_w;
       if (!w.empty()) lib_w[1] = 2.5;
       const auto lib = testing::libsvmTrain(prob, y, k.gamma, C, 1e-3, true, lib_w);
-      const double obj_lib = testing::exactObjective(lib.alpha, testing::exactGradient(p.X, y, lib.alpha, k));
+      const double obj_lib =
+          testing::exactObjective(lib.alpha, testing::exactGradient(p.X, y, lib.alpha, k));
       EXPECT_NEAR(ovr.solutions[c].objective, obj_lib, 1e-5 * std::abs(obj_lib))
           << "class " << ovr.classes[c] << " weighted " << !w.empty();
       EXPECT_NEAR(ovr.models[c].bias(), lib.bias, 2e-2);

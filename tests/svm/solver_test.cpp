@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -120,9 +120,8 @@ TEST(Solver, BadInputThrowsWithAReason) {
   const Kernel k = Kernel::rbfFromSigma(0.3);
   const SolverOptions opt;
   auto solve = [&](const Eigen::MatrixXd& X, const Eigen::VectorXd& yy, const Eigen::VectorXd& CC,
-                   const Kernel& kk, const SolverOptions& o) {
-    return [=] { solveBinary(X, yy, CC, kk, o); };
-  };
+                   const Kernel& kk,
+                   const SolverOptions& o) { return [=] { solveBinary(X, yy, CC, kk, o); }; };
   EXPECT_NE(what(solve(p.X, Eigen::VectorXd::Ones(50), C, k, opt)).find("only class +1"),
             std::string::npos);
   EXPECT_NE(what(solve(p.X, -Eigen::VectorXd::Ones(50), C, k, opt)).find("only class -1"),
@@ -161,7 +160,8 @@ TEST(Model, GradientMatchesCentralDifferences) {
   Kernel rq;
   rq.type = KernelType::kRationalQuadratic;
   rq.gamma = 30;
-  for (const Kernel& k : {Kernel::rbfFromSigma(0.1), rq, Kernel::blockSum(Kernel::rbfFromSigma(0.1), 1)}) {
+  for (const Kernel& k :
+       {Kernel::rbfFromSigma(0.1), rq, Kernel::blockSum(Kernel::rbfFromSigma(0.1), 1)}) {
     const SolverResult r = solveBinary(p.X, y, C, k, SolverOptions());
     const BinaryModel m = BinaryModel::fromSolution(p.X, y, r, k);
     EXPECT_EQ(m.numSupportVectors(), r.support_vectors);
@@ -247,7 +247,8 @@ TEST(SolverVsLibsvm, DecisionsAgreeInSign) {
   const Eigen::MatrixXd Q = testing::nearQueries(p.X, 100000, sigmaFor(p) / 2, 8);
   int agree = 0;
   for (int s = 0; s < Q.cols(); ++s)
-    agree += (m.decision(Q.col(s).data()) > 0) == (testing::libsvmDecision(lib.get(), Q.col(s).data(), 6) > 0);
+    agree += (m.decision(Q.col(s).data()) > 0) ==
+             (testing::libsvmDecision(lib.get(), Q.col(s).data(), 6) > 0);
   EXPECT_GE(agree, 99990);
 }
 

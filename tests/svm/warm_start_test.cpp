@@ -22,8 +22,8 @@ struct Edited {
 };
 
 // Moves, removes and adds `fraction` of the samples (moves by a tenth of a ball radius).
-Edited edit(const testing::BallProblem& p, unsigned long long problem_seed, const Eigen::VectorXd& y,
-            double fraction, unsigned long long seed) {
+Edited edit(const testing::BallProblem& p, unsigned long long problem_seed,
+            const Eigen::VectorXd& y, double fraction, unsigned long long seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uni(0, 1);
   std::normal_distribution<double> normal(0, 1);
@@ -111,7 +111,8 @@ TEST(WarmStart, InitialGradientIsExact) {
   ASSERT_EQ(warm.validate(e.X.cols(), e.X.rows()), "");
   KernelColumns data(e.X, k);
   Eigen::VectorXd alpha, G, G_bar;
-  const WarmStartCounts counts = detail::initialiseFromWarmStart(warm, e.X, e.y, C2, data, alpha, G, G_bar);
+  const WarmStartCounts counts =
+      detail::initialiseFromWarmStart(warm, e.X, e.y, C2, data, alpha, G, G_bar);
   EXPECT_NEAR(e.y.dot(alpha), 0.0, 1e-9);
   EXPECT_GE(alpha.minCoeff(), 0.0);
   EXPECT_LE((alpha - C2).maxCoeff(), 0.0);

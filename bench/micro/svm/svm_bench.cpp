@@ -220,18 +220,35 @@ int main(int argc, char** argv) {
     b->Iterations(1)->Repetitions(1);
   }
   benchmark::RegisterBenchmark("BM_TrainWarm/svmp", BM_TrainWarm_svmp)
-      ->ArgNames({"d", "n"})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3)
-      ->Args({2, 10000})->Args({2, 20000})->Args({6, 10000})->Args({6, 20000});
+      ->ArgNames({"d", "n"})
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->Iterations(3)
+      ->Args({2, 10000})
+      ->Args({2, 20000})
+      ->Args({6, 10000})
+      ->Args({6, 20000});
   benchmark::RegisterBenchmark("BM_TrainOvr/svmp/d:6/n:20000", BM_TrainOvr_svmp)
-      ->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()
+      ->ArgName("threads")
+      ->Arg(1)
+      ->Arg(2)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
       ->Iterations(1);
   benchmark::RegisterBenchmark("BM_TrainOvr/libsvm/d:6/n:20000", BM_TrainOvr_libsvm)
-      ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->Iterations(1);
   for (auto [name, fn] : {std::pair{"BM_Eval/full", &BM_Eval_full},
                           std::pair{"BM_Eval/truncated", &BM_Eval_truncated},
                           std::pair{"BM_Eval/libsvm", &BM_Eval_libsvm}}) {
-    benchmark::RegisterBenchmark(name, fn)->ArgNames({"d", "n"})->Args({2, 10000})
-        ->Args({2, 20000})->Args({6, 10000})->Args({6, 20000})->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(name, fn)
+        ->ArgNames({"d", "n"})
+        ->Args({2, 10000})
+        ->Args({2, 20000})
+        ->Args({6, 10000})
+        ->Args({6, 20000})
+        ->Unit(benchmark::kMicrosecond);
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
