@@ -75,7 +75,10 @@ Labelling labelByHyperplane(const Eigen::MatrixXd& samples, const std::vector<in
       consistency = std::min(consistency, std::abs(sum) / s.count.at(region));
     }
     const bool split = (positive > 0 && negative > 0) || positive + negative < 2;
-    const double score = (split ? 2.0 : 0.0) + consistency;
+    // Both classes in the labelling that will be trained (boundary samples by their own side) first,
+    // then obstacles on both sides, then the least ambiguous obstacle.
+    const bool both = apply(samples, regions, boundary_region, w, -w.dot(start), true).both_classes;
+    const double score = (both ? 4.0 : 0.0) + (split ? 2.0 : 0.0) + consistency;
     if (score > best_score) best_score = score, best_w = w;
   }
   return apply(samples, regions, boundary_region, best_w, -best_w.dot(start), true);

@@ -5,11 +5,14 @@
 //  - kRandom is the thesis' method: one random w orthogonal to goal - start, every region by majority,
 //    the boundary as one region. The thesis reports it often puts every sample in one class in higher
 //    dimensions (ch. 2.4); measureRandomFailureRate() measures how often.
-//  - kBalanced always yields two non-empty classes with each obstacle on a consistent side: among
-//    random candidates it keeps the hyperplane that splits the obstacles into two non-empty groups (when
-//    there are two or more) with every obstacle's samples most consistently on its side, and labels
-//    boundary samples one by one by their side, so the boundary, which surrounds the free space,
-//    contributes to both classes.
+//  - kBalanced yields two non-empty classes with each obstacle on a consistent side (one label per
+//    obstacle): boundary samples are labelled one by one by their side, so the boundary, which surrounds
+//    the free space and hence start and goal, contributes to both classes; among random candidates it
+//    keeps the hyperplane whose labelling has both classes, then splits the obstacles into two
+//    non-empty groups (when there are two or more and a hyperplane through start and goal can), then
+//    has every obstacle's samples most consistently on one side. In 2-D the hyperplane is the line
+//    through start and goal, so the candidates differ only in sign. both_classes is false only when no
+//    candidate separates anything (every sample on one side of every candidate).
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>

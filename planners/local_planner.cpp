@@ -40,6 +40,7 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, PlanResult& result)
   const Eigen::VectorXd goal = query.goal.cwiseProduct(scale);
   Eigen::VectorXd x = query.start.cwiseProduct(scale), grad(x.size()), q_prev = query.start;
   result.path = {query.start};
+  const double reach = options_.goal_radius < 0 ? options_.sigma : options_.goal_radius;
   double best = (x - goal).norm();
   int since_best = 0;
   auto decision = [&](const Eigen::VectorXd& at, Eigen::VectorXd& g) {
@@ -49,6 +50,10 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, PlanResult& result)
   };
   for (int it = 0; it < options_.max_iterations; ++it) {
     const double to_goal = (x - goal).norm();
+    if (to_goal <= reach && to_goal > options_.step && context_.validator.isValid(q_prev, query.goal)) {
+      result.path.push_back(query.goal);
+      return PlanStatus::kSolved;
+    }
     if (to_goal <= options_.step) {
       if (!context_.validator.isValid(q_prev, query.goal)) {
         result.message = "the last step to the goal is blocked";

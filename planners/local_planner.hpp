@@ -6,6 +6,7 @@
 // steps along -grad U. No progress towards the goal for `stall_iterations` steps is reported as
 // PlanStatus::kLocalMinimum; a step into a real obstacle ends the run as kFailed. Each step is checked
 // by the shared motion validator, so the returned path is collision-free at the scenario's resolution.
+// Within goal_radius (default sigma) of the goal a collision-free straight motion ends the descent.
 // Parameters (scenario `planners.local`): sigma, C, mu, step, labelling (balanced|random),
 // link_resolution, obstacle_resolution, boundary_resolution, max_samples, max_iterations,
 // stall_iterations.
@@ -24,6 +25,12 @@ struct LocalPlannerOptions {
   double mu = 0.1;
   double step = 0.02;          // descent step, weighted metric
   double boundary_tolerance = 0.05;  // |F| below which the descent counts as on the boundary
+  // Within this distance of the goal (weighted metric) the straight motion to the goal is tried and
+  // taken when collision-free; < 0 means sigma. Near the goal the kink of |F| on a decision boundary
+  // passing close by is a local minimum of U whenever mu < |grad F| there (the goal itself has
+  // U = |F(goal)| > 0 unless it lies on the boundary); the SVM cannot resolve the geometry inside
+  // one kernel width anyway. 0 gives the thesis' pure descent (reach the goal only within one step).
+  double goal_radius = -1;
   double eps = 1e-3;           // SMO tolerance
   LabellingMethod labelling = LabellingMethod::kBalanced;
   IkSamplingOptions sampling;
