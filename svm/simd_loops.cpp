@@ -227,12 +227,14 @@ SVMP_INLINE void rbfColumnImpl(const double* coords, long stride, int d, const d
   }
 }
 
-template <int L, bool kGrad>
+// kD > 0: the dimension as a compile-time constant (loops over coordinates unroll, the gradient
+// accumulators stay in registers); kD = 0: run-time dimension up to 16.
+template <int L, bool kGrad, int kD = 0>
 SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const double* q,
                                        double gamma, double r2, double* grad) {
   using D = typename V<L>::D;
-  constexpr int kMaxDim = 16;
-  const int d = sv.d;
+  constexpr int kMaxDim = kD > 0 ? kD : 16;
+  const int d = kD > 0 ? kD : sv.d;
   D f = splat<L>(0.0);
   D g[kMaxDim];
   for (int k = 0; k < d; ++k) g[k] = splat<L>(0.0);
@@ -299,10 +301,27 @@ SVMP_AVX2 void rbfColumnAvx2(const double* coords, long stride, int d, const dou
   rbfColumnImpl<4>(coords, stride, d, z, neg_gamma, len, out);
 }
 
+template <int L, bool kGrad>
+SVMP_INLINE double truncatedRbfSumDispatch(const BlockedSupportVectors& sv, const double* q,
+                                           double gamma, double r2, double* grad) {
+  switch (sv.d) {
+    case 2:
+      return truncatedRbfSumImpl<L, kGrad, 2>(sv, q, gamma, r2, grad);
+    case 3:
+      return truncatedRbfSumImpl<L, kGrad, 3>(sv, q, gamma, r2, grad);
+    case 6:
+      return truncatedRbfSumImpl<L, kGrad, 6>(sv, q, gamma, r2, grad);
+    case 7:
+      return truncatedRbfSumImpl<L, kGrad, 7>(sv, q, gamma, r2, grad);
+    default:
+      return truncatedRbfSumImpl<L, kGrad>(sv, q, gamma, r2, grad);
+  }
+}
+
 SVMP_AVX2 double truncatedRbfSumAvx2(const BlockedSupportVectors& sv, const double* q, double gamma,
                                      double r2, double* grad) {
-  return grad ? truncatedRbfSumImpl<4, true>(sv, q, gamma, r2, grad)
-              : truncatedRbfSumImpl<4, false>(sv, q, gamma, r2, grad);
+  return grad ? truncatedRbfSumDispatch<4, true>(sv, q, gamma, r2, grad)
+              : truncatedRbfSumDispatch<4, false>(sv, q, gamma, r2, grad);
 }
 
 const bool kHaveAvx2 = __builtin_cpu_supports("avx2");
@@ -352,8 +371,8 @@ namespace svmp::svm::loops {
 double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double gamma, double r2,
                        double* grad) {
   if (kHaveAvx2) return truncatedRbfSumAvx2(sv, q, gamma, r2, grad);
-  return grad ? truncatedRbfSumImpl<2, true>(sv, q, gamma, r2, grad)
-              : truncatedRbfSumImpl<2, false>(sv, q, gamma, r2, grad);
+  return grad ? truncatedRbfSumDispatch<2, true>(sv, q, gamma, r2, grad)
+              : truncatedRbfSumDispatch<2, false>(sv, q, gamma, r2, grad);
 }
 
 }  // namespace svmp::svm::loops

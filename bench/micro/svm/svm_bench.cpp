@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
                           std::pair{"BM_TrainCold/libsvm", &BM_TrainCold_libsvm}}) {
     auto* b = benchmark::RegisterBenchmark(name, fn);
     trainArgs(b);
-    b->Iterations(1)->Repetitions(1);
+    b->Iterations(3);
   }
   benchmark::RegisterBenchmark("BM_TrainWarm/svmp", BM_TrainWarm_svmp)
       ->ArgNames({"d", "n"})
