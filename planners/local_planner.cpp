@@ -66,7 +66,10 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, PlanResult& result)
     const Eigen::VectorXd attraction = options_.mu * (x - goal) / to_goal;
     const double g2 = grad.squaredNorm();
     double t = f >= 0 ? 1.0 : -1.0;
-    if (std::abs(f) <= options_.boundary_tolerance && g2 > 1e-300)
+    // On the boundary when F = 0 is within one step to first order: otherwise a step across the kink
+    // flips the sign of grad |F| and the descent zig-zags across the boundary instead of following it.
+    const double on_boundary = std::max(options_.boundary_tolerance, options_.step * std::sqrt(g2));
+    if (std::abs(f) <= on_boundary && g2 > 1e-300)
       t = std::clamp(-attraction.dot(grad) / g2, -1.0, 1.0);
     const Eigen::VectorXd direction = -(attraction + t * grad);
     const double norm = direction.norm();
