@@ -69,8 +69,20 @@ Tree growTree(const CollisionChecker& checker, const ConfigurationSpace& space, 
       scaled.col(static_cast<Eigen::Index>(tree.nodes.size())) = q_new.cwiseProduct(scale);
       tree.nodes.push_back(q_new);
       tree.boundary.push_back(0);
-    } else {
+    } else if (!tree.boundary[e]) {
       tree.boundary[e] = 1;
+      if (options.refine_boundary && static_cast<int>(tree.nodes.size()) < n) {
+        // Bisection keeps `inside` hitting the obstacle and `outside` missing it.
+        Eigen::VectorXd inside = tree.nodes[e], outside = q_new, mid(space.dim());
+        const double tolerance = options.refine_tolerance > 0 ? options.refine_tolerance : options.step / 256;
+        while (space.distance(inside, outside) > tolerance) {
+          mid = 0.5 * (inside + outside);
+          (checker.hits(mid, obstacle.id) ? inside : outside) = mid;
+        }
+        scaled.col(static_cast<Eigen::Index>(tree.nodes.size())) = inside.cwiseProduct(scale);
+        tree.nodes.push_back(inside);
+        tree.boundary.push_back(1);
+      }
     }
   }
   if (static_cast<int>(tree.nodes.size()) < n) {

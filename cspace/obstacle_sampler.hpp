@@ -4,6 +4,11 @@
 // or found by uniform sampling), grown towards uniform random configurations by a fixed step in the
 // weighted metric. q_new joins the tree when it hits the same obstacle; otherwise the node it grew from,
 // q_expansion, is marked a boundary sample and q_new is dropped. Each tree stops at N nodes.
+// Surface refinement (on by default; the thesis' own future direction, ch. 3.5: "sampling methods that
+// focus on boundary samples"): the first time a node is marked boundary, the segment from it to the free
+// q_new is bisected down to refine_tolerance and the last colliding point joins the tree as a boundary
+// sample. Surface samples put the SVM's maximum-margin boundary in the middle of a passage to within that
+// tolerance, where interior tree nodes leave it off by up to half a step.
 // Trees grow in parallel (OpenMP), each from its own generator seeded by (seed, obstacle id), so the
 // result does not depend on the thread count.
 #include <cstdint>
@@ -21,6 +26,8 @@ struct ObstacleSamplerOptions {
   int max_root_attempts = 200000;  // uniform draws when searching for a root
   int max_iterations_factor = 50;  // a tree gives up after factor * N expansions
   bool include_virtual = false;  // also sample virtual (guide) obstacles
+  bool refine_boundary = true;   // bisect towards the obstacle surface at boundary nodes
+  double refine_tolerance = -1;  // bisection stops below this length; < 0: step / 256
   std::string validate() const;  // "" when valid, else what is wrong
 };
 

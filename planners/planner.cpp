@@ -68,6 +68,8 @@ std::unique_ptr<Planner> makePlanner(const std::string& name, const PlanningCont
     o.duplicate_radius = params.getDouble("duplicate_radius", 0.5 * o.step, 0);
     o.repair_rounds = static_cast<int>(params.getInt("repair_rounds", o.repair_rounds, 0, 1000));
     o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
+    o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
+    o.boundary_connect_depth = static_cast<int>(params.getInt("boundary_connect_depth", o.boundary_connect_depth, 0, 8));
     planner = std::make_unique<SvmpPlanner>(context, o);
   } else if (name == "local") {
     LocalPlannerOptions o;

@@ -2,24 +2,34 @@
 
 namespace svmp::planners {
 
+Connector straightConnector(const PlanningContext& context) {
+  return [&context](Roadmap& roadmap, int a, int b) {
+    if (!context.validator.isValid(roadmap.node(a), roadmap.node(b))) return false;
+    roadmap.addEdge(a, b, context.space.distance(roadmap.node(a), roadmap.node(b)));
+    return true;
+  };
+}
+
 void connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first) {
+                       int k, int first, const Connector& given) {
+  const Connector connect = given ? given : straightConnector(context);
+  const int count = roadmap.numNodes();  // nodes a connector adds on the way are not revisited
   // Ask the tree for more than k so that k remain after dropping same-component neighbours.
   const int search = std::min(nn.size(), 3 * k + 1);
-  for (int i = first; i < roadmap.numNodes(); ++i) {
+  for (int i = first; i < count; ++i) {
     int tried = 0;
     for (int j : nn.nearest(roadmap.node(i), search)) {
       if (tried >= k) break;
       if (j == i || roadmap.connected(i, j)) continue;
       ++tried;
-      if (context.validator.isValid(roadmap.node(i), roadmap.node(j)))
-        roadmap.addEdge(i, j, context.space.distance(roadmap.node(i), roadmap.node(j)));
+      connect(roadmap, i, j);
     }
   }
 }
 
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                          const cspace::Query& query, int k) {
+                          const cspace::Query& query, int k, const Connector& given) {
+  const Connector connect = given ? given : straightConnector(context);
   QueryOutcome out;
   out.start_node = roadmap.addNode(query.start);
   out.goal_node = roadmap.addNode(query.goal);
@@ -31,8 +41,7 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
       if (tried >= k) break;
       if (roadmap.connected(endpoint, j)) continue;
       ++tried;
-      if (context.validator.isValid(roadmap.node(endpoint), roadmap.node(j)))
-        roadmap.addEdge(endpoint, j, context.space.distance(roadmap.node(endpoint), roadmap.node(j)));
+      connect(roadmap, endpoint, j);
     }
   }
   if (!roadmap.connected(out.start_node, out.goal_node)) return out;

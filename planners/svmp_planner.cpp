@@ -27,6 +27,12 @@ SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
   if (options_.duplicate_radius < 0) options_.duplicate_radius = 0.5 * options_.step;
 }
 
+Connector SvmpPlanner::connector() const {
+  return [this](Roadmap& roadmap, int a, int b) {
+    return connectAlongBoundary(roadmap, a, b, options_.boundary_connect_depth);
+  };
+}
+
 void SvmpPlanner::clear() {
   samples_ = {};
   risk_.reset();
@@ -78,6 +84,7 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts,
                                const std::vector<int>& classes) {
   const int n = static_cast<int>(starts.size());
   std::vector<Eigen::VectorXd> ends(n);
+  std::vector<int> end_class(n);
 #pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
   for (int i = 0; i < n; ++i) {
     int k = classes[i];
@@ -89,6 +96,7 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts,
       }
     }
     ends[i] = risk_->descend(k, starts[i], context_.space, options_.descent).q;
+    end_class[i] = k;
   }
   // Near-duplicates are dropped before any collision check, in a fixed order (deterministic).
   const Eigen::VectorXd& scale = context_.space.metricScale();
@@ -107,8 +115,14 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts,
   }
   std::vector<char> valid(fresh.size());
 #pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
-  for (int f = 0; f < static_cast<int>(fresh.size()); ++f)
+  for (int f = 0; f < static_cast<int>(fresh.size()); ++f) {
     valid[f] = context_.checker.isValid(ends[fresh[f]]);
+    if (valid[f] || !options_.centre_in_passage) continue;
+    if (auto centre = centreAlongNormal(end_class[fresh[f]], ends[fresh[f]])) {
+      ends[fresh[f]] = *centre;
+      valid[f] = 1;
+    }
+  }
   int added = 0;
   for (size_t f = 0; f < fresh.size(); ++f)
     if (valid[f]) roadmap_.addNode(ends[fresh[f]]), ++added;
@@ -129,10 +143,89 @@ void SvmpPlanner::findBoundaryMilestones(PhaseTimes& times) {
   times.milestones_ms += msSince(t0);
 }
 
+std::optional<Eigen::VectorXd> SvmpPlanner::centreAlongNormal(int k, const Eigen::VectorXd& q) const {
+  const Eigen::VectorXd& scale = context_.space.metricScale();
+  Eigen::VectorXd grad(q.size());
+  risk_->decisionAndGradient(k, q, grad);
+  Eigen::VectorXd normal = grad.cwiseQuotient(scale);  // dF/dx in scaled coordinates
+  if (!(normal.norm() > 0)) return std::nullopt;
+  normal.normalize();
+  const Eigen::VectorXd direction = normal.cwiseQuotient(scale);  // unit length in the metric
+  auto at = [&](double t) {
+    Eigen::VectorXd p = q + t * direction;
+    context_.space.clamp(p);
+    return p;
+  };
+  auto free = [&](double t) { return context_.checker.isValid(at(t)); };
+  const double first = context_.validator.resolution() / 4;
+  // Nearest free offset on either side, by doubling.
+  double inside = 0, outside = 0;
+  bool found = false;
+  for (double t = first; t <= options_.sigma && !found; t *= 2)
+    for (double signed_t : {t, -t})
+      if (free(signed_t)) {
+        outside = signed_t;
+        inside = t == first ? 0 : signed_t / 2;  // blocked: tested one doubling earlier
+        found = true;
+        break;
+      }
+  if (!found) return std::nullopt;
+  const double tolerance = first / 8;
+  // Entry edge: between `inside` (blocked or q) and `outside` (free).
+  double blocked = inside, clear = outside;
+  while (std::abs(clear - blocked) > tolerance) {
+    const double mid = 0.5 * (blocked + clear);
+    (free(mid) ? clear : blocked) = mid;
+  }
+  const double entry = clear;
+  // Exit edge: keep going the same way until blocked (or sigma), then bisect.
+  const double sign = outside > 0 ? 1 : -1;
+  double last_free = outside, probe = outside;
+  while (std::abs(probe) < options_.sigma) {
+    probe = sign * std::min(options_.sigma, 2 * std::abs(probe));
+    if (!free(probe)) break;
+    last_free = probe;
+  }
+  double exit = last_free;
+  if (probe != last_free) {
+    double lo = last_free, hi = probe;
+    while (std::abs(hi - lo) > tolerance) {
+      const double mid = 0.5 * (lo + hi);
+      (free(mid) ? lo : hi) = mid;
+    }
+    exit = lo;
+  }
+  const Eigen::VectorXd centre = at(0.5 * (entry + exit));
+  if (!context_.checker.isValid(centre)) return std::nullopt;
+  return centre;
+}
+
+bool SvmpPlanner::connectAlongBoundary(Roadmap& roadmap, int a, int b, int depth) const {
+  const Eigen::VectorXd& qa = roadmap.node(a);
+  const Eigen::VectorXd& qb = roadmap.node(b);
+  if (context_.validator.isValid(qa, qb)) {
+    roadmap.addEdge(a, b, context_.space.distance(qa, qb));
+    return true;
+  }
+  if (depth <= 0) return false;
+  const Eigen::VectorXd mid = 0.5 * (qa + qb);
+  int k = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < risk_->numClasses(); ++c)
+    if (const double r = risk_->risk(c, mid); r < best) best = r, k = c;
+  Eigen::VectorXd m = risk_->descend(k, mid, context_.space, options_.descent).q;
+  if (options_.centre_in_passage && !context_.checker.isValid(m))
+    if (auto centre = centreAlongNormal(k, m)) m = *centre;
+  const double shortest = std::min(context_.space.distance(m, qa), context_.space.distance(m, qb));
+  if (shortest < options_.duplicate_radius || !context_.checker.isValid(m)) return false;
+  const int mi = roadmap.addNode(m);
+  return connectAlongBoundary(roadmap, a, mi, depth - 1) && connectAlongBoundary(roadmap, mi, b, depth - 1);
+}
+
 void SvmpPlanner::makeRoadmap(PhaseTimes& times) {
   const auto t0 = Clock::now();
   nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
-  connectMilestones(roadmap_, *nn_, context_, options_.k);
+  connectMilestones(roadmap_, *nn_, context_, options_.k, 0, connector());
   times.roadmap_ms += msSince(t0);
 }
 
@@ -158,7 +251,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, csp
     for (int i = 0; i < with_query.numNodes(); ++i)
       if (with_query.connected(endpoint, i)) consider(with_query.node(i));
     if (a.size() == 0) continue;
-    const double spread = std::max(0.25 * best, options_.sigma);
+    const double spread = 0.5 * best;  // local to the disconnection: the pair is its narrowest point
     for (int s = 0; s < options_.repair_samples / 2; ++s) {
       Eigen::VectorXd q = a + unit(rng) * (b - a);
       for (int d = 0; d < q.size(); ++d) q[d] += spread * normal(rng) / scale[d];
@@ -170,7 +263,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, csp
   const int old_n = roadmap_.numNodes();
   if (addMilestones(starts, std::vector<int>(starts.size(), -1)) == 0) return false;
   nn_.emplace(roadmap_.nodes(), scale);
-  connectMilestones(roadmap_, *nn_, context_, options_.k, old_n);
+  connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, connector());
   return true;
 }
 
@@ -182,7 +275,7 @@ PlanResult SvmpPlanner::query(const cspace::Query& query, std::uint64_t seed) {
   cspace::Rng rng(seed ^ 0xA5A5A5A5ULL);
   for (int round = 0;; ++round) {
     Roadmap with_query = roadmap_;
-    QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k);
+    QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, connector());
     if (!outcome.path.empty()) {
       result.path = std::move(outcome.path);
       result.status = PlanStatus::kSolved;

@@ -4,7 +4,8 @@
 // (one-versus-rest RBF SVMs, per-class C, ch. 3.2 and 4.1.2), FindBoundaryMilestones (each boundary
 // sample descends its class's risk function R_k = |F_k| to the decision boundary; kept when
 // collision-free and not a near-duplicate), MakeRoadmap (k nearest in other components, union-find) and
-// Query (A*). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
+// Query (A*). Milestones are joined by straight segments, bent along the decision boundary when the
+// straight one is blocked (connectAlongBoundary). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
 // disconnection are guided down to the decision boundaries and the roadmap is reconnected.
 // The roadmap answers many queries: build() once, query() many times; clear() forgets it.
 #include <optional>
@@ -13,6 +14,7 @@
 #include "planners/nearest_neighbors.hpp"
 #include "planners/planner.hpp"
 #include "planners/risk_function.hpp"
+#include "planners/roadmap_builder.hpp"
 #include "planners/roadmap.hpp"
 
 namespace svmp::planners {
@@ -30,6 +32,8 @@ struct SvmpOptions {
   double duplicate_radius = -1;   // milestones closer than this are merged; < 0: step / 2
   int repair_rounds = 5;          // query repair rounds (0 disables)
   int repair_samples = 100;       // random configurations per repair round
+  int boundary_connect_depth = 4; // see SvmpPlanner::connectAlongBoundary; 0: straight lines only
+  bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
 };
 
 class SvmpPlanner final : public Planner {
@@ -59,6 +63,17 @@ class SvmpPlanner final : public Planner {
   // and adds the collision-free, non-duplicate results as milestones. Returns how many were added.
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes);
   bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng);
+  // The local planner between milestones: the straight segment when it is free; otherwise its midpoint
+  // descends to the nearest decision boundary and both halves are tried again (up to
+  // boundary_connect_depth levels), so connections bend along the boundary through curved passages.
+  // Intermediate points become milestones.
+  bool connectAlongBoundary(Roadmap& roadmap, int a, int b, int depth) const;
+  Connector connector() const;
+  // A descended milestone that collides lies where the SVM boundary, smooth at the scale sigma, misses
+  // a passage narrower than sigma. Along the boundary's normal (grad F_k) within sigma, find the free
+  // interval nearest to it (doubling steps from resolution/4, then bisection of both edges) and return
+  // its middle: the centre of the passage on that line. Empty when no free interval is found.
+  std::optional<Eigen::VectorXd> centreAlongNormal(int k, const Eigen::VectorXd& q) const;
 
   PlanningContext context_;
   SvmpOptions options_;
