@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -74,6 +77,33 @@ TEST(TruncatedRbfEvaluator, MatchesBruteForceAndBoundsTheFullSum) {
     }
     EXPECT_LE(worst_full, ev.truncationBound());
   }
+}
+
+// d > 16 takes the nanoflann radius-search path.
+TEST(TruncatedRbfEvaluator, HighDimensionMatchesBruteForce) {
+  const int d = 18, m = 3000;
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> uni(0, 1);
+  Eigen::MatrixXd sv(d, m);
+  Eigen::VectorXd coef(m);
+  for (int s = 0; s < m; ++s) {
+    for (int k = 0; k < d; ++k) sv(k, s) = uni(rng);
+    coef[s] = 10 * (uni(rng) - 0.5);
+  }
+  const BinaryModel model(sv, coef, 0.3, Kernel::rbf(8.0));  // radius^2 = 0.625
+  const TruncatedRbfEvaluator ev(model);
+  int nonzero = 0;
+  for (int s = 0; s < 200; ++s) {
+    std::vector<double> g(d), gb(d);
+    double fscale = 0, gscale = 0;
+    const double* q = sv.col(s).data();
+    const double f = ev.decisionAndGradient(q, g.data());
+    const double fb = bruteTruncated(model, q, gb.data(), &fscale, &gscale);
+    nonzero += fscale > 0;
+    EXPECT_NEAR(f, fb, 1e-12 * std::max(1.0, fscale));
+    for (int k = 0; k < d; ++k) EXPECT_NEAR(g[k], gb[k], 1e-12 * std::max(1.0, gscale));
+  }
+  EXPECT_EQ(nonzero, 200);
 }
 
 TEST(TruncatedRbfEvaluator, ConstEvaluationIsThreadSafe) {
