@@ -1,6 +1,7 @@
 #include "svm/simd_loops.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "svm/kernel.hpp"
@@ -239,7 +240,16 @@ SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const do
   D g[kMaxDim];
   for (int k = 0; k < d; ++k) g[k] = splat<L>(0.0);
   const D ng = splat<L>(-gamma), vr2 = splat<L>(r2), zero = splat<L>(0.0);
+  const double radius_of_search = std::sqrt(r2) * (1 + 1e-12);  // never prunes a term it needs
   for (int b = 0; b < sv.blocks; ++b) {
+    // Sphere first: in 6-D a box of 16 points spans about half the range of every coordinate.
+    double dc = 0.0;
+    for (int k = 0; k < d; ++k) {
+      const double c = q[k] - sv.centre[k * sv.blocks + b];
+      dc += c * c;
+    }
+    const double reach = radius_of_search + sv.radius[b];
+    if (dc >= reach * reach) continue;
     double box = 0.0;
     for (int k = 0; k < d; ++k) {
       const double lo = sv.lo[k * sv.blocks + b], hi = sv.hi[k * sv.blocks + b];

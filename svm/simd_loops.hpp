@@ -35,7 +35,7 @@ void rbfColumn(const double* coords, long stride, int d, const double* z, double
                double* out);
 
 // Truncated RBF sum over blocks of support vectors (thesis ch. 4.3.1): terms with squared distance
-// d^2 >= r2 are zero. Blocks whose bounding box is at squared distance >= r2 are skipped.
+// d^2 >= r2 are zero. Blocks whose bounding sphere or box is at squared distance >= r2 are skipped.
 // xs: coordinates, row k at xs + k * stride, blocks of `block` consecutive columns (block is a
 // multiple of 4; padding columns have coefficient 0). lo/hi: bounding boxes, row k at k * blocks.
 // Returns sum coef_s exp(-gamma d_s^2); grad (if not null) gets its gradient w.r.t. q.
@@ -43,6 +43,8 @@ struct BlockedSupportVectors {
   int d, blocks, block;
   long stride;
   const double *xs, *coef, *lo, *hi;
+  const double* centre;  // bounding spheres: centre row k at k * blocks, radius per block
+  const double* radius;
 };
 double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double gamma, double r2,
                        double* grad);

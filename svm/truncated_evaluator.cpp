@@ -69,8 +69,8 @@ struct TruncatedRbfEvaluator::Tree {
 };
 
 struct TruncatedRbfEvaluator::Blocks {
-  static constexpr int kBlock = 16;
-  std::vector<double> xs, coef, lo, hi;
+  static constexpr int kBlock = 32;
+  std::vector<double> xs, coef, lo, hi, centre, radius;
   loops::BlockedSupportVectors view{};
 
   Blocks(const Eigen::MatrixXd& sv, const Eigen::VectorXd& c) {
@@ -104,7 +104,26 @@ struct TruncatedRbfEvaluator::Blocks {
         hi[static_cast<size_t>(k) * blocks + b] = h;
       }
     }
-    view = {d, blocks, kBlock, stride, xs.data(), coef.data(), lo.data(), hi.data()};
+    centre.assign(static_cast<size_t>(d) * blocks, 0.0);
+    radius.assign(blocks, 0.0);
+    for (int b = 0; b < blocks; ++b) {
+      for (int k = 0; k < d; ++k) {
+        const size_t at = static_cast<size_t>(k) * blocks + b;
+        centre[at] = 0.5 * (lo[at] + hi[at]);
+      }
+      double r2 = 0.0;
+      for (int i = leaves[b].first; i < leaves[b].second; ++i) {
+        double dist = 0.0;
+        for (int k = 0; k < d; ++k) {
+          const double c = sv(k, order[i]) - centre[static_cast<size_t>(k) * blocks + b];
+          dist += c * c;
+        }
+        r2 = std::max(r2, dist);
+      }
+      radius[b] = std::sqrt(r2) * (1 + 1e-12);
+    }
+    view = {d,           blocks,    kBlock,    stride,        xs.data(),
+            coef.data(), lo.data(), hi.data(), centre.data(), radius.data()};
   }
 
   // Median split on the widest coordinate, at a multiple of kBlock so leaves are full.

@@ -3,11 +3,12 @@
 // count.
 //
 // For d <= 16 the support vectors are split by a k-d tree (median splits on the widest coordinate)
-// into leaves of 16, stored coordinate-major with their bounding boxes; a query skips every leaf
-// whose box is at squared distance >= 5/gamma and sums the others with vector instructions, masking
+// into leaves of 32, stored coordinate-major with bounding spheres and boxes; a query skips every
+// leaf whose sphere or box is at squared distance >= 5/gamma and sums the others with vector
+// instructions (skipping 4-groups with no lane inside the radius), masking
 // the terms outside the radius. Near the decision boundary ~160 of 1,400 support vectors (d = 6)
-// are inside the radius, and evaluating whole leaves with 4-lane vectors was ~10x faster than
-// nanoflann's radius search with one scalar exponential per neighbour (docs/svm.md).
+// are inside the radius, and evaluating leaves with 4-lane vectors was ~3x faster than nanoflann's
+// radius search with one scalar exponential per neighbour (docs/svm.md).
 // For d > 16 a nanoflann k-d tree radius search sums the terms inside its result set.
 //
 // The truncated F differs from the full sum by at most truncationBound() = sum_i |coef_i| exp(-5).
