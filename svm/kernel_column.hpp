@@ -19,7 +19,7 @@ namespace svmp::svm {
 
 class KernelColumns {
  public:
-  KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel, int threads = 1);
+  KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel);
 
   int size() const { return n_; }
   int dim() const { return d_; }
@@ -46,7 +46,6 @@ class KernelColumns {
   int n_;
   int d_;
   Kernel kernel_;
-  int threads_;
   std::vector<double> coords_;  // d x n, row k holds coordinate k of every sample
   std::vector<double> diag_;
 };

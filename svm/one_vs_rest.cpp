@@ -55,7 +55,6 @@ OneVsRestModel trainOneVsRest(const Eigen::MatrixXd& X, const std::vector<int>& 
   out.solutions.resize(k);
   const int workers = std::min(threads, k);
   SolverOptions per_problem = opt;
-  per_problem.threads = 1;  // parallel over classes instead
   std::vector<std::exception_ptr> errors(k);
 #pragma omp parallel for num_threads(workers) schedule(dynamic, 1)
   for (int c = 0; c < k; ++c) {

@@ -420,8 +420,6 @@ std::string SolverOptions::validate() const {
     msg << "max_iterations must be positive, got " << max_iterations;
   else if (!(cache_mb >= 0.0) || !std::isfinite(cache_mb))
     msg << "cache_mb must be >= 0 and finite, got " << cache_mb;
-  else if (threads < 1)
-    msg << "threads must be >= 1, got " << threads;
   return msg.str();
 }
 
@@ -438,7 +436,7 @@ SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
                          const WarmStart* warm) {
   validateProblem(X, y, C, kernel, opt);
-  KernelColumns data(X, kernel, opt.threads);
+  KernelColumns data(X, kernel);
   SmoSolver solver(data, y, C, opt);
   WarmStartCounts counts;
   if (warm != nullptr) {

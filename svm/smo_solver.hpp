@@ -25,7 +25,6 @@ struct SolverOptions {
   long max_iterations = 10'000'000;  // reported as SolverStatus::kIterationLimit when reached
   double cache_mb = 100;             // kernel column cache (float entries)
   bool shrinking = true;
-  int threads = 1;  // OpenMP threads for kernel columns of >= 8192 entries
 
   std::string validate() const;  // "" when OK, else what is wrong
 };
