@@ -187,6 +187,11 @@ bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) 
   if (!robot_->withinLimits(q)) return false;
   Workspace& ws = workspace();
   placeRobot(ws, q);
+  if (id == kSelfCollisionHit) {
+    for (const auto& [a, b] : self_pairs_)
+      if (linksCollide(ws, a, b)) return true;
+    return false;
+  }
   auto& obj = ws.obstacles.at(id - 1);
   fcl::CollisionRequestd request;
   for (auto& link : ws.links)

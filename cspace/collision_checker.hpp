@@ -40,7 +40,8 @@ class CollisionChecker {
   int checkIncludingVirtual(const Eigen::Ref<const Eigen::VectorXd>& q) const {
     return checkImpl(q, true);
   }
-  // True when the robot (within joint limits) overlaps obstacle `id` (real or virtual).
+  // True when the robot (within joint limits) overlaps obstacle `id` (real or virtual), or, for
+  // id == kSelfCollisionHit, when two of its non-adjacent links overlap.
   bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const;
   // Minimum FCL distance between the robot and the real obstacles; 0 when touching or penetrating.
   // Not counted as a collision check.

@@ -30,7 +30,7 @@ int nearestNode(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd&
 Tree growTree(const CollisionChecker& checker, const ConfigurationSpace& space, const Obstacle& obstacle,
               const ObstacleSamplerOptions& options, std::uint64_t seed) {
   Tree tree;
-  Rng rng(seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(obstacle.id)));
+  Rng rng(seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(obstacle.id + 1000)));
   Eigen::VectorXd root;
   if (obstacle.root_sample) {
     root = *obstacle.root_sample;
@@ -118,6 +118,11 @@ ObstacleSamples sampleObstacles(const CollisionChecker& checker, const Configura
   std::vector<const Obstacle*> targets;
   for (const auto& o : checker.environment().obstacles())
     if (!o.is_virtual || options.include_virtual) targets.push_back(&o);
+  Obstacle self_collision;
+  self_collision.id = kSelfCollisionHit;
+  self_collision.name = "self-collision";
+  if (options.include_self_collision && !checker.selfCollisionPairs().empty())
+    targets.push_back(&self_collision);
   std::vector<Tree> trees(targets.size());
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
   for (int t = 0; t < static_cast<int>(targets.size()); ++t)

@@ -26,6 +26,10 @@ struct ObstacleSamplerOptions {
   int max_root_attempts = 200000;  // uniform draws when searching for a root
   int max_iterations_factor = 50;  // a tree gives up after factor * N expansions
   bool include_virtual = false;  // also sample virtual (guide) obstacles
+  // Also grow a tree in the self-collision region (label kSelfCollisionHit): the thesis counts self
+  // collision as a C-obstacle (IsMeetingConstraints inside IsCollidingWith, ch. 4.3.2). Only used when
+  // the robot has self-collision pairs.
+  bool include_self_collision = true;
   bool refine_boundary = true;   // bisect towards the obstacle surface at boundary nodes
   double refine_tolerance = -1;  // bisection stops below this length; < 0: step / 256
   std::string validate() const;  // "" when valid, else what is wrong

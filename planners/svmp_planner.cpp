@@ -52,18 +52,21 @@ void SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times) {
   cspace::ObstacleSamplerOptions opt;
   opt.step = options_.step;
   opt.samples_per_tree = options_.samples_per_tree;
+  opt.include_self_collision = options_.sample_self_collision;
   samples_ = cspace::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
   times.sampling_ms += msSince(t0);
 }
 
 void SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   const auto t0 = Clock::now();
+  const cspace::Environment& env = context_.checker.environment();
   std::map<int, double> weights;
-  for (int label : samples_.labels)
-    weights[label] = context_.checker.environment().byId(label).weight;
+  for (int label : samples_.labels) weights[label] = label > 0 ? env.byId(label).weight : 1.0;
   if (weights.size() < 2) {
-    std::string have = weights.empty() ? "none" : "only '" +
-        context_.checker.environment().byId(weights.begin()->first).name + "'";
+    const int only = weights.empty() ? 0 : weights.begin()->first;
+    const std::string have = weights.empty() ? "none"
+                             : only > 0      ? "only '" + env.byId(only).name + "'"
+                                             : "only the self-collision region";
     throw std::invalid_argument(
         "svmp: one-versus-rest needs samples of at least two obstacles, got " + have +
         (samples_.warnings.empty() ? "" : " (" + samples_.warnings.front() + ")"));
@@ -283,9 +286,15 @@ PlanResult SvmpPlanner::query(const cspace::Query& query, std::uint64_t seed) {
     }
     if (round >= options_.repair_rounds ||
         !repair(with_query, outcome.start_node, outcome.goal_node, rng)) {
+      int start_size = 0, goal_size = 0;
+      for (int i = 0; i < with_query.numNodes(); ++i) {
+        start_size += with_query.connected(i, outcome.start_node);
+        goal_size += with_query.connected(i, outcome.goal_node);
+      }
       result.status = PlanStatus::kFailed;
-      result.message = "start and goal are not connected by the roadmap after " +
-                       std::to_string(round) + " repair rounds";
+      result.message = "start and goal are not connected after " + std::to_string(round) +
+                       " repair rounds (their components hold " + std::to_string(start_size) + " and " +
+                       std::to_string(goal_size) + " of " + std::to_string(with_query.numNodes()) + " nodes)";
       break;
     }
   }

@@ -34,6 +34,7 @@ struct SvmpOptions {
   int repair_samples = 100;       // random configurations per repair round
   int boundary_connect_depth = 4; // see SvmpPlanner::connectAlongBoundary; 0: straight lines only
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
+  bool sample_self_collision = true;  // the self-collision region is one more class
 };
 
 class SvmpPlanner final : public Planner {
