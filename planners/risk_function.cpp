@@ -67,44 +67,56 @@ DescentResult RiskFunction::descend(int k, const Eigen::Ref<const Eigen::VectorX
   // Work in scaled coordinates x, where the weighted metric is Euclidean.
   const SmallVector lower = space.lower().cwiseProduct(scale_), upper = space.upper().cwiseProduct(scale_);
   SmallVector x = q0.cwiseProduct(scale_), g(n), trial(n), trial_g(n);
-  double f = evaluateScaled(k, x.data(), g.data());
   DescentResult result;
-  result.status = DescentStatus::kIterationLimit;
-  for (result.iterations = 0; result.iterations < options.max_iterations; ++result.iterations) {
-    if (std::abs(f) <= options.tolerance) {
-      result.status = DescentStatus::kOnBoundary;
-      break;
-    }
-    const double g2 = g.squaredNorm();
-    if (!(g2 > 1e-300)) {
-      result.status = DescentStatus::kLocalMinimum;
-      break;
-    }
-    SmallVector step = (-f / g2) * g;
-    const double length = step.norm();
-    if (length > options.max_step) step *= options.max_step / length;
-    bool improved = false;
-    for (int h = 0; h <= options.max_halvings; ++h, step *= 0.5) {
-      trial = (x + step).cwiseMax(lower).cwiseMin(upper);
-      if ((trial - x).norm() < options.min_step) break;
-      const double trial_f = evaluateScaled(k, trial.data(), trial_g.data());
-      if (std::abs(trial_f) < std::abs(f)) {
-        x = trial;
-        g = trial_g;
-        f = trial_f;
-        improved = true;
+  // The truncated F jumps by up to |coef_i| exp(-5) where a support vector leaves the radius, which can
+  // stall the descent just short of F = 0; the exact F, smooth, finishes it in a few Newton steps.
+  const bool polish = !truncated_.empty();
+  int limit = options.max_iterations;
+  auto evaluate = [&](const double* at, double* grad, bool exact) {
+    return exact ? models_[k].decisionAndGradient(at, grad) : evaluateScaled(k, at, grad);
+  };
+  for (bool exact : {false, true}) {
+    if (exact && (!polish || result.status == DescentStatus::kOnBoundary)) break;
+    double f = evaluate(x.data(), g.data(), exact);
+    result.status = DescentStatus::kIterationLimit;
+    for (int it = 0; it < limit; ++it, ++result.iterations) {
+      if (std::abs(f) <= options.tolerance) {
+        result.status = DescentStatus::kOnBoundary;
+        break;
+      }
+      const double g2 = g.squaredNorm();
+      if (!(g2 > 1e-300)) {
+        result.status = DescentStatus::kLocalMinimum;
+        break;
+      }
+      SmallVector step = (-f / g2) * g;
+      const double length = step.norm();
+      if (length > options.max_step) step *= options.max_step / length;
+      bool improved = false;
+      for (int h = 0; h <= options.max_halvings; ++h, step *= 0.5) {
+        trial = (x + step).cwiseMax(lower).cwiseMin(upper);
+        if ((trial - x).norm() < options.min_step) break;
+        const double trial_f = evaluate(trial.data(), trial_g.data(), exact);
+        if (std::abs(trial_f) < std::abs(f)) {
+          x = trial;
+          g = trial_g;
+          f = trial_f;
+          improved = true;
+          break;
+        }
+      }
+      if (!improved) {
+        result.status = DescentStatus::kLocalMinimum;
         break;
       }
     }
-    if (!improved) {
-      result.status = DescentStatus::kLocalMinimum;
-      break;
-    }
+    if (result.status == DescentStatus::kIterationLimit && std::abs(f) <= options.tolerance)
+      result.status = DescentStatus::kOnBoundary;
+    result.risk = std::abs(f);
+    result.exact = exact || truncated_.empty();
+    limit = std::min(options.max_iterations, 20);  // polishing needs only a few steps
   }
-  if (result.status == DescentStatus::kIterationLimit && std::abs(f) <= options.tolerance)
-    result.status = DescentStatus::kOnBoundary;
   result.q = x.cwiseQuotient(scale_);
-  result.risk = std::abs(f);
   return result;
 }
 

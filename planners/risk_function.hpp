@@ -35,7 +35,8 @@ struct DescentOptions {
 
 struct DescentResult {
   Eigen::VectorXd q;
-  double risk = 0;
+  double risk = 0;     // |F_k(q)| from the evaluator that finished the descent
+  bool exact = false;  // true when that was the exact sum (polishing after a truncated stall)
   int iterations = 0;
   DescentStatus status = DescentStatus::kIterationLimit;
 };
@@ -60,7 +61,8 @@ class RiskFunction {
 
   // Descends R_k from q0, staying inside the space's bounds: each step is the Newton step towards
   // F_k = 0 along the gradient (-F g / |g|^2 in the scaled coordinates), cut to max_step and halved
-  // until R_k decreases.
+  // until R_k decreases. With truncated evaluation, a descent that stalls short of the boundary is
+  // finished on the exact F (at most 20 more steps).
   DescentResult descend(int k, const Eigen::Ref<const Eigen::VectorXd>& q0,
                         const cspace::ConfigurationSpace& space, const DescentOptions& options) const;
 
