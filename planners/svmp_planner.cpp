@@ -25,6 +25,7 @@ SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
   if (!(options_.C > 0)) throw std::invalid_argument("svmp: C must be positive");
   if (options_.descent.max_step <= 0) options_.descent.max_step = options_.sigma;
   if (options_.duplicate_radius < 0) options_.duplicate_radius = 0.5 * options_.step;
+  if (options_.boundary_connect_radius < 0) options_.boundary_connect_radius = 4 * options_.sigma;
 }
 
 Connector SvmpPlanner::connector() const {
@@ -210,7 +211,7 @@ bool SvmpPlanner::connectAlongBoundary(Roadmap& roadmap, int a, int b, int depth
     roadmap.addEdge(a, b, context_.space.distance(qa, qb));
     return true;
   }
-  if (depth <= 0) return false;
+  if (depth <= 0 || context_.space.distance(qa, qb) > options_.boundary_connect_radius) return false;
   const Eigen::VectorXd mid = 0.5 * (qa + qb);
   int k = 0;
   double best = std::numeric_limits<double>::infinity();

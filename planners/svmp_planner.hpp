@@ -33,6 +33,7 @@ struct SvmpOptions {
   int repair_rounds = 5;          // query repair rounds (0 disables)
   int repair_samples = 100;       // random configurations per repair round
   int boundary_connect_depth = 4; // see SvmpPlanner::connectAlongBoundary; 0: straight lines only
+  double boundary_connect_radius = -1;  // only pairs closer than this bend; < 0: 4 sigma
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
   bool sample_self_collision = true;  // the self-collision region is one more class
 };
