@@ -76,7 +76,11 @@ DescentResult RiskFunction::descend(int k, const Eigen::Ref<const Eigen::VectorX
     return exact ? models_[k].decisionAndGradient(at, grad) : evaluateScaled(k, at, grad);
   };
   for (bool exact : {false, true}) {
-    if (exact && (!polish || result.status == DescentStatus::kOnBoundary)) break;
+    // Polish only where the residual is within the truncation error: elsewhere (far from every
+    // support vector, F = bias) the exact F is flat too.
+    if (exact && (!polish || result.status == DescentStatus::kOnBoundary ||
+                  result.risk > truncated_[k].truncationBound()))
+      break;
     double f = evaluate(x.data(), g.data(), exact);
     result.status = DescentStatus::kIterationLimit;
     for (int it = 0; it < limit; ++it, ++result.iterations) {
