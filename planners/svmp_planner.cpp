@@ -85,7 +85,7 @@ void SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
 }
 
 int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts,
-                               const std::vector<int>& classes) {
+                               const std::vector<int>& classes, bool keep_free_starts) {
   const int n = static_cast<int>(starts.size());
   std::vector<Eigen::VectorXd> ends(n);
   std::vector<int> end_class(n);
@@ -121,9 +121,14 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts,
 #pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
   for (int f = 0; f < static_cast<int>(fresh.size()); ++f) {
     valid[f] = context_.checker.isValid(ends[fresh[f]]);
-    if (valid[f] || !options_.centre_in_passage) continue;
-    if (auto centre = centreAlongNormal(end_class[fresh[f]], ends[fresh[f]])) {
+    if (valid[f]) continue;
+    std::optional<Eigen::VectorXd> centre;
+    if (options_.centre_in_passage) centre = centreAlongNormal(end_class[fresh[f]], ends[fresh[f]]);
+    if (centre) {
       ends[fresh[f]] = *centre;
+      valid[f] = 1;
+    } else if (keep_free_starts && context_.checker.isValid(starts[fresh[f]])) {
+      ends[fresh[f]] = starts[fresh[f]];
       valid[f] = 1;
     }
   }
@@ -265,7 +270,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, csp
   }
   if (starts.empty()) return false;
   const int old_n = roadmap_.numNodes();
-  if (addMilestones(starts, std::vector<int>(starts.size(), -1)) == 0) return false;
+  if (addMilestones(starts, std::vector<int>(starts.size(), -1), true) == 0) return false;
   nn_.emplace(roadmap_.nodes(), scale);
   connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, connector());
   return true;

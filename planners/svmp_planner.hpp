@@ -62,8 +62,12 @@ class SvmpPlanner final : public Planner {
 
  private:
   // Descends each start point on the risk of its class (or, with class -1, of the nearest boundary)
-  // and adds the collision-free, non-duplicate results as milestones. Returns how many were added.
-  int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes);
+  // and adds the collision-free, non-duplicate results as milestones. With keep_free_starts, a start
+  // whose descent ends in collision is kept itself when it is free (the repair's hybrid with uniform
+  // PRM sampling that thesis ch. 3.5 suggests where obstacle regions dominate). Returns how many were
+  // added.
+  int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
+                    bool keep_free_starts = false);
   bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng);
   // The local planner between milestones: the straight segment when it is free; otherwise its midpoint
   // descends to the nearest decision boundary and both halves are tried again (up to
