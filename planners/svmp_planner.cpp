@@ -54,6 +54,9 @@ void SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times) {
   opt.step = options_.step;
   opt.samples_per_tree = options_.samples_per_tree;
   opt.include_self_collision = options_.sample_self_collision;
+  // Surfaces located to a quarter of the checking resolution: finer than any passage the motion
+  // validator can tell apart, coarse enough to cost a few bisection checks per boundary node.
+  opt.refine_tolerance = context_.validator.resolution() / 4;
   samples_ = cspace::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
   times.sampling_ms += msSince(t0);
 }
