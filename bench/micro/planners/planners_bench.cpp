@@ -1,0 +1,102 @@
+// Hot paths of the planners: obstacle sampling (thesis Algorithm 1), milestone descent on the risk
+// function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric.
+// The world is thesis Fig 3.7 (bench/scenarios/thesis_fig3_7.yaml) or the 5-DoF arm of Fig 4.4.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "cspace/obstacle_sampler.hpp"
+#include "cspace/scenario.hpp"
+#include "planners/nearest_neighbors.hpp"
+#include "planners/svmp_planner.hpp"
+
+namespace svmp {
+namespace {
+
+struct World {
+  cspace::Scenario scenario;
+  cspace::ConfigurationSpace space;
+  cspace::CollisionChecker checker;
+  cspace::MotionValidator validator;
+  planners::PlanningContext context;
+  std::unique_ptr<planners::SvmpPlanner> svmp;
+
+  World(const std::string& file, double sigma, double step, int per_tree, bool truncated)
+      : scenario(cspace::loadScenario(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + file)),
+        space(scenario.makeSpace()),
+        checker(scenario.robot, scenario.environment, scenario.self_collision),
+        validator(checker, space, scenario.resolution),
+        context{space, checker, validator, 1} {
+    planners::SvmpOptions o;
+    o.sigma = sigma;
+    o.step = step;
+    o.samples_per_tree = per_tree;
+    o.truncated = truncated;
+    svmp = std::make_unique<planners::SvmpPlanner>(context, o);
+    planners::PhaseTimes times;
+    svmp->sampleObstacle(1, times);
+    svmp->trainMultiSvm(times);
+  }
+};
+
+World& world(int which, bool truncated) {
+  static World fig3_7_t("thesis_fig3_7.yaml", 0.5, 0.3, 300, true);
+  static World fig3_7_f("thesis_fig3_7.yaml", 0.5, 0.3, 300, false);
+  static World fig4_4_t("thesis_fig4_4.yaml", 0.3, 0.15, 300, true);
+  static World fig4_4_f("thesis_fig4_4.yaml", 0.3, 0.15, 300, false);
+  if (which == 0) return truncated ? fig3_7_t : fig3_7_f;
+  return truncated ? fig4_4_t : fig4_4_f;
+}
+
+// One milestone descent per iteration, from the boundary samples in turn.
+void BM_MilestoneDescent(benchmark::State& state) {
+  World& w = world(static_cast<int>(state.range(0)), state.range(1) != 0);
+  const auto& samples = w.svmp->samples();
+  std::vector<int> boundary;
+  for (int i = 0; i < samples.size(); ++i)
+    if (samples.boundary[i]) boundary.push_back(i);
+  planners::DescentOptions options;
+  options.max_step = w.svmp->options().sigma;
+  size_t next = 0;
+  for (auto _ : state) {
+    const int i = boundary[next++ % boundary.size()];
+    const int k = w.svmp->risk()->classIndex(samples.labels[i]);
+    benchmark::DoNotOptimize(w.svmp->risk()->descend(k, samples.points.col(i), w.space, options));
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.SetLabel(std::string(state.range(0) == 0 ? "fig3_7" : "fig4_4") +
+                 (state.range(1) ? " truncated" : " full"));
+}
+BENCHMARK(BM_MilestoneDescent)->ArgsProduct({{0, 1}, {1, 0}});
+
+void BM_ObstacleSampling(benchmark::State& state) {
+  World& w = world(static_cast<int>(state.range(0)), true);
+  cspace::ObstacleSamplerOptions o;
+  o.step = state.range(0) == 0 ? 0.3 : 0.15;
+  o.samples_per_tree = 300;
+  std::uint64_t seed = 1;
+  for (auto _ : state) benchmark::DoNotOptimize(cspace::sampleObstacles(w.checker, w.space, o, seed++, 1));
+  state.SetLabel(state.range(0) == 0 ? "fig3_7" : "fig4_4");
+}
+BENCHMARK(BM_ObstacleSampling)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void BM_NearestNeighbors(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0)), dim = 6;
+  cspace::Rng rng(3);
+  std::vector<Eigen::VectorXd> points(n);
+  std::uniform_real_distribution<double> u(-3, 3);
+  for (auto& p : points) {
+    p.resize(dim);
+    for (int d = 0; d < dim; ++d) p[d] = u(rng);
+  }
+  const planners::NearestNeighbors nn(points, Eigen::VectorXd::LinSpaced(dim, 2.0, 0.5));
+  size_t next = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(nn.nearest(points[next++ % n], 31));
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_NearestNeighbors)->Arg(1000)->Arg(10000);
+
+}  // namespace
+}  // namespace svmp
+
+BENCHMARK_MAIN();
