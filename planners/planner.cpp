@@ -70,8 +70,6 @@ std::unique_ptr<Planner> makePlanner(const std::string& name, const PlanningCont
     o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
     o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
     o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
-    o.boundary_connect_radius = params.getDouble("boundary_connect_radius", -1, -1);
-    o.boundary_connect_depth = static_cast<int>(params.getInt("boundary_connect_depth", o.boundary_connect_depth, 0, 8));
     planner = std::make_unique<SvmpPlanner>(context, o);
   } else if (name == "local") {
     LocalPlannerOptions o;

@@ -2,34 +2,33 @@
 
 namespace svmp::planners {
 
-Connector straightConnector(const PlanningContext& context) {
-  return [&context](Roadmap& roadmap, int a, int b) {
-    if (!context.validator.isValid(roadmap.node(a), roadmap.node(b))) return false;
+namespace {
+
+// The straight-line local planner: one validated segment, one edge.
+void connect(Roadmap& roadmap, const PlanningContext& context, int a, int b) {
+  if (context.validator.isValid(roadmap.node(a), roadmap.node(b)))
     roadmap.addEdge(a, b, context.space.distance(roadmap.node(a), roadmap.node(b)));
-    return true;
-  };
 }
 
+}  // namespace
+
 void connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first, const Connector& given) {
-  const Connector connect = given ? given : straightConnector(context);
-  const int count = roadmap.numNodes();  // nodes a connector adds on the way are not revisited
+                       int k, int first) {
   // Ask the tree for more than k so that k remain after dropping same-component neighbours.
   const int search = std::min(nn.size(), 3 * k + 1);
-  for (int i = first; i < count; ++i) {
+  for (int i = first; i < roadmap.numNodes(); ++i) {
     int tried = 0;
     for (int j : nn.nearest(roadmap.node(i), search)) {
       if (tried >= k) break;
       if (j == i || roadmap.connected(i, j)) continue;
       ++tried;
-      connect(roadmap, i, j);
+      connect(roadmap, context, i, j);
     }
   }
 }
 
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                          const cspace::Query& query, int k, const Connector& given) {
-  const Connector connect = given ? given : straightConnector(context);
+                          const cspace::Query& query, int k) {
   QueryOutcome out;
   out.start_node = roadmap.addNode(query.start);
   out.goal_node = roadmap.addNode(query.goal);
@@ -41,7 +40,7 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
       if (tried >= k) break;
       if (roadmap.connected(endpoint, j)) continue;
       ++tried;
-      connect(roadmap, endpoint, j);
+      connect(roadmap, context, endpoint, j);
     }
   }
   if (!roadmap.connected(out.start_node, out.goal_node)) return out;

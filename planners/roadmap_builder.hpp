@@ -3,22 +3,15 @@
 // 1996): each milestone is connected to its k nearest milestones that lie in other connected components
 // (straight-line local planner at the scenario's resolution, union-find for components); a query
 // connects start and goal to their k nearest milestones and runs A* on the roadmap.
-#include <functional>
-
 #include "planners/nearest_neighbors.hpp"
 #include "planners/planner.hpp"
 #include "planners/roadmap.hpp"
 
 namespace svmp::planners {
 
-// Tries to join nodes a and b; adds the edge(s) (and any intermediate nodes) when it succeeds.
-using Connector = std::function<bool(Roadmap& roadmap, int a, int b)>;
-// The straight-line local planner: one validated segment, one edge.
-Connector straightConnector(const PlanningContext& context);
-
 // Connects nodes [first, numNodes) of the roadmap; `nn` indexes the roadmap's nodes [0, nn.size()).
 void connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first = 0, const Connector& connect = {});
+                       int k, int first = 0);
 
 struct QueryOutcome {
   std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected
@@ -28,7 +21,7 @@ struct QueryOutcome {
 // Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean),
 // connects each to its k nearest milestones and searches the path.
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                          const cspace::Query& query, int k, const Connector& connect = {});
+                          const cspace::Query& query, int k);
 
 double pathLength(const std::vector<Eigen::VectorXd>& path, const cspace::ConfigurationSpace& space);
 

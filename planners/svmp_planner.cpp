@@ -25,13 +25,6 @@ SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
   if (!(options_.C > 0)) throw std::invalid_argument("svmp: C must be positive");
   if (options_.descent.max_step <= 0) options_.descent.max_step = options_.sigma;
   if (options_.duplicate_radius < 0) options_.duplicate_radius = 0.5 * options_.step;
-  if (options_.boundary_connect_radius < 0) options_.boundary_connect_radius = 4 * options_.sigma;
-}
-
-Connector SvmpPlanner::connector() const {
-  return [this](Roadmap& roadmap, int a, int b) {
-    return connectAlongBoundary(roadmap, a, b, options_.boundary_connect_depth);
-  };
 }
 
 void SvmpPlanner::clear() {
@@ -212,32 +205,10 @@ std::optional<Eigen::VectorXd> SvmpPlanner::centreAlongNormal(int k, const Eigen
   return centre;
 }
 
-bool SvmpPlanner::connectAlongBoundary(Roadmap& roadmap, int a, int b, int depth) const {
-  const Eigen::VectorXd& qa = roadmap.node(a);
-  const Eigen::VectorXd& qb = roadmap.node(b);
-  if (context_.validator.isValid(qa, qb)) {
-    roadmap.addEdge(a, b, context_.space.distance(qa, qb));
-    return true;
-  }
-  if (depth <= 0 || context_.space.distance(qa, qb) > options_.boundary_connect_radius) return false;
-  const Eigen::VectorXd mid = 0.5 * (qa + qb);
-  int k = 0;
-  double best = std::numeric_limits<double>::infinity();
-  for (int c = 0; c < risk_->numClasses(); ++c)
-    if (const double r = risk_->risk(c, mid); r < best) best = r, k = c;
-  Eigen::VectorXd m = risk_->descend(k, mid, context_.space, options_.descent).q;
-  if (options_.centre_in_passage && !context_.checker.isValid(m))
-    if (auto centre = centreAlongNormal(k, m)) m = *centre;
-  const double shortest = std::min(context_.space.distance(m, qa), context_.space.distance(m, qb));
-  if (shortest < options_.duplicate_radius || !context_.checker.isValid(m)) return false;
-  const int mi = roadmap.addNode(m);
-  return connectAlongBoundary(roadmap, a, mi, depth - 1) && connectAlongBoundary(roadmap, mi, b, depth - 1);
-}
-
 void SvmpPlanner::makeRoadmap(PhaseTimes& times) {
   const auto t0 = Clock::now();
   nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
-  connectMilestones(roadmap_, *nn_, context_, options_.k, 0, connector());
+  connectMilestones(roadmap_, *nn_, context_, options_.k);
   times.roadmap_ms += msSince(t0);
 }
 
@@ -275,7 +246,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, csp
   const int old_n = roadmap_.numNodes();
   if (addMilestones(starts, std::vector<int>(starts.size(), -1), true) == 0) return false;
   nn_.emplace(roadmap_.nodes(), scale);
-  connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, connector());
+  connectMilestones(roadmap_, *nn_, context_, options_.k, old_n);
   return true;
 }
 
@@ -287,7 +258,7 @@ PlanResult SvmpPlanner::query(const cspace::Query& query, std::uint64_t seed) {
   cspace::Rng rng(seed ^ 0xA5A5A5A5ULL);
   for (int round = 0;; ++round) {
     Roadmap with_query = roadmap_;
-    QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, connector());
+    QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k);
     if (!outcome.path.empty()) {
       result.path = std::move(outcome.path);
       result.status = PlanStatus::kSolved;

@@ -4,8 +4,7 @@
 // (one-versus-rest RBF SVMs, per-class C, ch. 3.2 and 4.1.2), FindBoundaryMilestones (each boundary
 // sample descends its class's risk function R_k = |F_k| to the decision boundary; kept when
 // collision-free and not a near-duplicate), MakeRoadmap (k nearest in other components, union-find) and
-// Query (A*). Milestones are joined by straight segments, bent along the decision boundary when the
-// straight one is blocked (connectAlongBoundary). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
+// Query (A*). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
 // disconnection are guided down to the decision boundaries and the roadmap is reconnected.
 // The roadmap answers many queries: build() once, query() many times; clear() forgets it.
 #include <optional>
@@ -14,7 +13,6 @@
 #include "planners/nearest_neighbors.hpp"
 #include "planners/planner.hpp"
 #include "planners/risk_function.hpp"
-#include "planners/roadmap_builder.hpp"
 #include "planners/roadmap.hpp"
 
 namespace svmp::planners {
@@ -32,8 +30,6 @@ struct SvmpOptions {
   double duplicate_radius = -1;   // milestones closer than this are merged; < 0: step / 2
   int repair_rounds = 5;          // query repair rounds (0 disables)
   int repair_samples = 100;       // random configurations per repair round
-  int boundary_connect_depth = 4; // see SvmpPlanner::connectAlongBoundary; 0: straight lines only
-  double boundary_connect_radius = -1;  // only pairs closer than this bend; < 0: 4 sigma
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
   bool sample_self_collision = true;  // the self-collision region is one more class
 };
@@ -69,12 +65,6 @@ class SvmpPlanner final : public Planner {
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
                     bool keep_free_starts = false);
   bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng);
-  // The local planner between milestones: the straight segment when it is free; otherwise its midpoint
-  // descends to the nearest decision boundary and both halves are tried again (up to
-  // boundary_connect_depth levels), so connections bend along the boundary through curved passages.
-  // Intermediate points become milestones.
-  bool connectAlongBoundary(Roadmap& roadmap, int a, int b, int depth) const;
-  Connector connector() const;
   // A descended milestone that collides lies where the SVM boundary, smooth at the scale sigma, misses
   // a passage narrower than sigma. Along the boundary's normal (grad F_k) within sigma, find the free
   // interval nearest to it (doubling steps from resolution/4, then bisection of both edges) and return
