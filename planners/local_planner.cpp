@@ -8,15 +8,6 @@
 #include "svm/smo_solver.hpp"
 
 namespace svmp::planners {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-}  // namespace
-
 LocalPlanner::LocalPlanner(const PlanningContext& context, LocalPlannerOptions options)
     : context_(context), options_(std::move(options)) {
   if (!(options_.sigma > 0) || !(options_.C > 0) || !(options_.mu >= 0) || !(options_.step > 0))

@@ -163,10 +163,9 @@ class OmplPlanner final : public Planner {
     }
     planner->setProblemDefinition(pdef);
     planner->setup();
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     const ob::PlannerStatus status = planner->solve(time_limit_);
-    result.times.query_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    result.times.query_ms = msSince(t0);
     ob::PlannerData data(si);
     planner->getPlannerData(data);
     result.milestones = data.numVertices();

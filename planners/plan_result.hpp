@@ -1,6 +1,7 @@
 #pragma once
 // What every planner returns (DESIGN.md "Counters and results"): a status, the path and named counters.
 #include <Eigen/Core>
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,6 +19,11 @@ enum class PlanStatus {
 };
 
 const char* planStatusName(PlanStatus status);
+
+using Clock = std::chrono::steady_clock;
+inline double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 struct PhaseTimes {
   double sampling_ms = 0, training_ms = 0, milestones_ms = 0, roadmap_ms = 0, query_ms = 0;

@@ -6,14 +6,6 @@
 #include "planners/roadmap_builder.hpp"
 
 namespace svmp::planners {
-namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
-
 PrmPlanner::PrmPlanner(const PlanningContext& context, PrmOptions options)
     : context_(context), options_(options) {}
 
@@ -23,7 +15,7 @@ PlanResult PrmPlanner::solve(const cspace::Query& query, std::uint64_t seed) {
   const auto calls0 = context_.validator.calls();
   PlanResult result;
   if (checkEndpoints(context_, query, result)) {
-    auto t0 = std::chrono::steady_clock::now();
+    auto t0 = Clock::now();
     // Draw all samples from one generator first, then test them in parallel: the milestone set does
     // not depend on the thread count.
     cspace::Rng rng(seed);
@@ -36,12 +28,12 @@ PlanResult PrmPlanner::solve(const cspace::Query& query, std::uint64_t seed) {
       if (free[i]) roadmap_.addNode(candidates[i]);
     result.times.sampling_ms = msSince(t0);
 
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     const NearestNeighbors nn(roadmap_.nodes(), context_.space.metricScale());
     connectMilestones(roadmap_, nn, context_, options_.k);
     result.times.roadmap_ms = msSince(t0);
 
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     Roadmap with_query = roadmap_;
     QueryOutcome outcome = queryRoadmap(with_query, nn, context_, query, options_.k);
     result.times.query_ms = msSince(t0);

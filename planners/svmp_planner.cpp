@@ -9,16 +9,6 @@
 #include "svm/one_vs_rest.hpp"
 
 namespace svmp::planners {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-}  // namespace
-
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
     : context_(context), options_(options) {
   if (!(options_.sigma > 0)) throw std::invalid_argument("svmp: sigma must be positive");
