@@ -8,6 +8,7 @@
 #include "svm/smo_solver.hpp"
 
 namespace svmp::planners {
+
 LocalPlanner::LocalPlanner(const PlanningContext& context, LocalPlannerOptions options)
     : context_(context), options_(std::move(options)) {
   if (!(options_.sigma > 0) || !(options_.C > 0) || !(options_.mu >= 0) || !(options_.step > 0))

@@ -6,6 +6,7 @@
 #include "planners/roadmap_builder.hpp"
 
 namespace svmp::planners {
+
 PrmPlanner::PrmPlanner(const PlanningContext& context, PrmOptions options)
     : context_(context), options_(options) {}
 

@@ -9,6 +9,7 @@
 #include "svm/one_vs_rest.hpp"
 
 namespace svmp::planners {
+
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
     : context_(context), options_(options) {
   if (!(options_.sigma > 0)) throw std::invalid_argument("svmp: sigma must be positive");
