@@ -28,7 +28,6 @@ const char* driverUsage() {
 
 DriverOptions parseDriverOptions(int argc, const char* const* argv) {
   DriverOptions o;
-  bool planners_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
     auto value = [&]() -> std::string {
@@ -42,7 +41,6 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
       for (std::string name; std::getline(list, name, ',');)
         if (!name.empty()) o.planners.push_back(name);
       if (o.planners.empty()) throw std::invalid_argument("flag --planners: empty list");
-      planners_given = true;
     } else if (flag == "--runs") o.runs = static_cast<int>(parseLong(flag, value(), 1, 100000));
     else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, 1L << 62));
     else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, 1024));
@@ -58,7 +56,6 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     else if (flag == "--help" || flag == "-h") o.help = true;
     else throw std::invalid_argument("unknown flag '" + flag + "'");
   }
-  (void)planners_given;
   if (!o.help && o.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
   return o;
 }

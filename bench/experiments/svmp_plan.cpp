@@ -1,6 +1,7 @@
 // svmp-plan: the experiment driver (DESIGN.md). Loads a scenario, runs each planner N times with seeds
 // S, S+1, ..., prints the thesis-style table and writes JSON and pictures. Bad input: one clear error,
 // exit status 2.
+#include <filesystem>
 #include <iostream>
 
 #include "bench/experiments/driver_options.hpp"
@@ -24,6 +25,11 @@ int main(int argc, char** argv) {
   try {
     const cspace::Scenario scenario = cspace::loadScenario(options.scenario);
     if (options.check) return experiments::printScenarioCheck(scenario, std::cout) ? 0 : 1;
+    std::error_code error;
+    if (!options.svg_dir.empty() && !std::filesystem::create_directories(options.svg_dir, error) && error) {
+      std::cerr << "svmp-plan: flag --svg: cannot create directory '" << options.svg_dir << "': " << error.message() << "\n";
+      return 2;
+    }
     std::cerr << "svmp-plan: " << scenario.name << ": running " << options.planners.size() << " planner(s), "
               << options.runs << " run(s) each\n";
     const auto results = experiments::runExperiment(scenario, options, std::cerr);
