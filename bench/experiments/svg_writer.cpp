@@ -232,7 +232,7 @@ std::string zeroLevelSet(const Canvas& canvas, const planners::RiskFunction& ris
         crossed[count++] = e;
       }
       const auto segment = [&](int e0, int e1) {
-        d += "M" + canvas.xy(crossing[e0]) + "L" + canvas.xy(crossing[e1]);
+        d.append("M").append(canvas.xy(crossing[e0])).append("L").append(canvas.xy(crossing[e1]));
       };
       if (count == 2) {
         segment(crossed[0], crossed[1]);
