@@ -64,35 +64,7 @@ float* KernelCache::request(int i, int len, int* filled) {
   return c.data.get();
 }
 
-void KernelCache::swapIndex(int i, int j) {
-  if (i == j) return;
-  const bool i_cached = columns_[i].len > 0;
-  const bool j_cached = columns_[j].len > 0;
-  if (i_cached) unlink(i);
-  if (j_cached) unlink(j);
-  std::swap(columns_[i].data, columns_[j].data);
-  std::swap(columns_[i].len, columns_[j].len);
-  if (columns_[i].len > 0) linkNewest(i);
-  if (columns_[j].len > 0) linkNewest(j);
-  if (i > j) std::swap(i, j);
-  // Entries i and j of every cached column trade places; a column that reaches i but not j
-  // cannot hold the moved entry and is dropped.
-  for (int h = oldest_; h >= 0;) {
-    const int next = columns_[h].next;
-    Column& c = columns_[h];
-    if (c.len > i) {
-      if (c.len > j)
-        std::swap(c.data[i], c.data[j]);
-      else
-        evict(h);
-    }
-    h = next;
-  }
-}
-
-}  // namespace svmp::svm
-
-namespace svmp::svm {
+void KernelCache::swapIndex(int i, int j) { swapIndices({{i, j}}); }
 
 void KernelCache::swapIndices(const std::vector<std::pair<int, int>>& swaps) {
   for (auto [i, j] : swaps) {
