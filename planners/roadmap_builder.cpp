@@ -10,21 +10,25 @@ void connect(Roadmap& roadmap, const PlanningContext& context, int a, int b) {
     roadmap.addEdge(a, b, context.space.distance(roadmap.node(a), roadmap.node(b)));
 }
 
+// Tries `node` against up to k of its `search` nearest indexed nodes that lie in other components.
+void connectToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
+                      int node, int k, int search) {
+  int tried = 0;
+  for (int j : nn.nearest(roadmap.node(node), search)) {
+    if (tried >= k) break;
+    if (j == node || roadmap.connected(node, j)) continue;
+    ++tried;
+    connect(roadmap, context, node, j);
+  }
+}
+
 }  // namespace
 
 void connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
                        int k, int first) {
   // Ask the tree for more than k so that k remain after dropping same-component neighbours.
   const int search = std::min(nn.size(), 3 * k + 1);
-  for (int i = first; i < roadmap.numNodes(); ++i) {
-    int tried = 0;
-    for (int j : nn.nearest(roadmap.node(i), search)) {
-      if (tried >= k) break;
-      if (j == i || roadmap.connected(i, j)) continue;
-      ++tried;
-      connect(roadmap, context, i, j);
-    }
-  }
+  for (int i = first; i < roadmap.numNodes(); ++i) connectToNearest(roadmap, nn, context, i, k, search);
 }
 
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
@@ -34,15 +38,9 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   out.goal_node = roadmap.addNode(query.goal);
   if (context.validator.isValid(query.start, query.goal))
     roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
-  for (int endpoint : {out.start_node, out.goal_node}) {
-    int tried = 0;
-    for (int j : nn.nearest(roadmap.node(endpoint), std::min(nn.size(), 3 * k))) {
-      if (tried >= k) break;
-      if (roadmap.connected(endpoint, j)) continue;
-      ++tried;
-      connect(roadmap, context, endpoint, j);
-    }
-  }
+  // Start and goal are not in the tree, so no slot of the search goes to the node itself.
+  for (int endpoint : {out.start_node, out.goal_node})
+    connectToNearest(roadmap, nn, context, endpoint, k, std::min(nn.size(), 3 * k));
   if (!roadmap.connected(out.start_node, out.goal_node)) return out;
   const Eigen::VectorXd goal = query.goal;
   const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {

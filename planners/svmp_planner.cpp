@@ -1,6 +1,5 @@
 #include "planners/svmp_planner.hpp"
 
-#include <chrono>
 #include <limits>
 #include <map>
 #include <random>
