@@ -205,6 +205,7 @@ bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) 
 
 double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   robot_->checkConfiguration(q, "clearance");
+  distances_.fetch_add(1, std::memory_order_relaxed);
   Workspace& ws = workspace();
   placeRobot(ws, q);
   double best = std::numeric_limits<double>::infinity();

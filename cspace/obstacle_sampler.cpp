@@ -6,10 +6,18 @@
 namespace svmp::cspace {
 namespace {
 
+// Polled every this many expansions: often enough for a millisecond limit, rare enough to cost nothing.
+constexpr long kStopPollInterval = 64;
+
+bool stopRequested(const ObstacleSamplerOptions& options, long iteration) {
+  return options.stop && iteration % kStopPollInterval == 0 && options.stop();
+}
+
 struct Tree {
   std::vector<Eigen::VectorXd> nodes;
   std::vector<char> boundary;
   std::string warning;
+  bool stopped = false;
 };
 
 // Nearest node by a linear scan: trees hold a few hundred nodes, so a scan over contiguous scaled
@@ -27,7 +35,7 @@ int nearestNode(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd&
   return best;
 }
 
-Tree growTree(const CollisionChecker& checker, const ConfigurationSpace& space, const Obstacle& obstacle,
+Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, const Obstacle& obstacle,
               const ObstacleSamplerOptions& options, std::uint64_t seed) {
   Tree tree;
   Rng rng(seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(obstacle.id + 1000)));
@@ -42,6 +50,10 @@ Tree growTree(const CollisionChecker& checker, const ConfigurationSpace& space, 
     Eigen::VectorXd q(space.dim());
     bool found = false;
     for (int a = 0; a < options.max_root_attempts && !found; ++a) {
+      if (stopRequested(options, a)) {
+        tree.stopped = true;
+        return tree;
+      }
       space.sampleUniform(rng, q);
       found = checker.hits(q, obstacle.id);
     }
@@ -62,6 +74,10 @@ Tree growTree(const CollisionChecker& checker, const ConfigurationSpace& space, 
   const long max_iterations = static_cast<long>(options.max_iterations_factor) * n;
   long iteration = 0;
   while (static_cast<int>(tree.nodes.size()) < n && iteration++ < max_iterations) {
+    if (stopRequested(options, iteration)) {
+      tree.stopped = true;
+      return tree;
+    }
     space.sampleUniform(rng, q_rand);
     const int e = nearestNode(scaled, static_cast<int>(tree.nodes.size()), q_rand.cwiseProduct(scale));
     const Eigen::VectorXd q_new = space.steer(tree.nodes[e], q_rand, options.step);
@@ -110,7 +126,7 @@ int ObstacleSamples::numBoundary() const {
   return n;
 }
 
-ObstacleSamples sampleObstacles(const CollisionChecker& checker, const ConfigurationSpace& space,
+ObstacleSamples sampleObstacles(const ValidityChecker& checker, const ConfigurationSpace& space,
                                 const ObstacleSamplerOptions& options, std::uint64_t seed,
                                 int threads) {
   const std::string err = options.validate();
@@ -121,7 +137,7 @@ ObstacleSamples sampleObstacles(const CollisionChecker& checker, const Configura
   Obstacle self_collision;
   self_collision.id = kSelfCollisionHit;
   self_collision.name = "self-collision";
-  if (options.include_self_collision && !checker.selfCollisionPairs().empty())
+  if (options.include_self_collision && checker.checksSelfCollision())
     targets.push_back(&self_collision);
   std::vector<Tree> trees(targets.size());
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
@@ -136,6 +152,7 @@ ObstacleSamples sampleObstacles(const CollisionChecker& checker, const Configura
   for (size_t t = 0; t < trees.size(); ++t) {
     samples.tree_sizes.push_back(static_cast<int>(trees[t].nodes.size()));
     if (!trees[t].warning.empty()) samples.warnings.push_back(trees[t].warning);
+    samples.stopped |= trees[t].stopped;
     for (size_t i = 0; i < trees[t].nodes.size(); ++i) {
       samples.points.col(column++) = trees[t].nodes[i];
       samples.labels.push_back(targets[t]->id);

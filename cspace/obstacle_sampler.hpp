@@ -12,10 +12,11 @@
 // Trees grow in parallel (OpenMP), each from its own generator seeded by (seed, obstacle id), so the
 // result does not depend on the thread count.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
-#include "cspace/collision_checker.hpp"
+#include "cspace/validity_checker.hpp"
 #include "cspace/configuration_space.hpp"
 
 namespace svmp::cspace {
@@ -32,6 +33,9 @@ struct ObstacleSamplerOptions {
   bool include_self_collision = true;
   bool refine_boundary = true;   // bisect towards the obstacle surface at boundary nodes
   double refine_tolerance = -1;  // bisection stops below this length; < 0: step / 256
+  // Asked every few expansions of every tree (from the growing threads at once: must be thread-safe);
+  // true ends the sampling with what it has and ObstacleSamples::stopped set.
+  std::function<bool()> stop;
   std::string validate() const;  // "" when valid, else what is wrong
 };
 
@@ -41,11 +45,12 @@ struct ObstacleSamples {
   std::vector<char> boundary;    // 1 when the sample is a boundary sample
   std::vector<int> tree_sizes;   // per obstacle, in environment order
   std::vector<std::string> warnings;  // roots not found, trees that stopped early
+  bool stopped = false;          // ObstacleSamplerOptions::stop ended the sampling
   int size() const { return static_cast<int>(labels.size()); }
   int numBoundary() const;
 };
 
-ObstacleSamples sampleObstacles(const CollisionChecker& checker, const ConfigurationSpace& space,
+ObstacleSamples sampleObstacles(const ValidityChecker& checker, const ConfigurationSpace& space,
                                 const ObstacleSamplerOptions& options, std::uint64_t seed,
                                 int threads);
 

@@ -122,7 +122,7 @@ void boundarySamples(const cspace::ConfigurationSpace& space, double res, cspace
 
 }  // namespace
 
-IkSamples sampleObstaclesByIk(const cspace::CollisionChecker& checker,
+IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
                               const cspace::ConfigurationSpace& space,
                               const IkSamplingOptions& options, std::uint64_t seed) {
   const std::string err = options.validate();

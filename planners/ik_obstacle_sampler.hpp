@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "cspace/collision_checker.hpp"
+#include "cspace/validity_checker.hpp"
 #include "cspace/configuration_space.hpp"
 
 namespace svmp::planners {
@@ -25,6 +25,7 @@ struct IkSamplingOptions {
   int free_joint_draws = 1;           // random draws of the free joints per pair
   int max_samples = 4000;             // uniform thinning beyond this (keeps SVM training bounded)
   std::string validate() const;
+  bool operator==(const IkSamplingOptions&) const = default;
 };
 
 struct IkSamples {
@@ -34,7 +35,7 @@ struct IkSamples {
 };
 
 // Throws std::invalid_argument when the robot has no closed-form IK here (point robots, the Panda).
-IkSamples sampleObstaclesByIk(const cspace::CollisionChecker& checker,
+IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
                               const cspace::ConfigurationSpace& space,
                               const IkSamplingOptions& options, std::uint64_t seed);
 

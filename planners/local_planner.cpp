@@ -5,23 +5,57 @@
 #include <cmath>
 #include <sstream>
 
+#include "planners/planner_registry.hpp"
 #include "svm/smo_solver.hpp"
 
 namespace svmp::planners {
 
+LocalPlannerOptions LocalPlannerOptions::fromParameters(const cspace::ParameterSet& params) {
+  LocalPlannerOptions o;
+  o.sigma = params.getDouble("sigma", o.sigma, 1e-9, 1e6);
+  o.C = params.getDouble("C", o.C, 1e-9, 1e12);
+  o.mu = params.getDouble("mu", o.mu, 0, 1e6);
+  o.step = params.getDouble("step", o.step, 1e-9, 1e6);
+  o.boundary_tolerance = params.getDouble("boundary_tolerance", o.boundary_tolerance, 0, 1e6);
+  o.goal_radius = params.getDouble("goal_radius", o.goal_radius, 0, 1e6);
+  o.eps = params.getDouble("eps", o.eps, 1e-15, 1);
+  o.labelling = params.getString("labelling", "balanced", {"balanced", "random"}) == "random"
+                    ? LabellingMethod::kRandom
+                    : LabellingMethod::kBalanced;
+  o.sampling.link_resolution = params.getDouble("link_resolution", o.sampling.link_resolution, 1e-6, 1e6);
+  o.sampling.obstacle_resolution = params.getDouble("obstacle_resolution", o.sampling.obstacle_resolution, 1e-6, 1e6);
+  o.sampling.boundary_resolution = params.getDouble("boundary_resolution", o.sampling.boundary_resolution, 1e-6, 1e6);
+  o.sampling.max_samples = static_cast<int>(params.getInt("max_samples", o.sampling.max_samples, 2, 1000000));
+  o.max_iterations = static_cast<int>(params.getInt("max_iterations", o.max_iterations, 1, 100000000));
+  o.stall_iterations = static_cast<int>(params.getInt("stall_iterations", o.stall_iterations, 1, 100000000));
+  return o;
+}
+
+std::string LocalPlannerOptions::validate() const {
+  if (!(sigma > 0) || !(C > 0) || !(mu >= 0) || !(step > 0) || !std::isfinite(sigma) || !std::isfinite(step))
+    return "sigma, C and step must be positive and finite, mu >= 0";
+  if (max_iterations < 1 || stall_iterations < 1) return "max_iterations and stall_iterations must be >= 1";
+  return "";
+}
+
+SVMP_REGISTER_PLANNER("local", [](const PlanningContext& context, const cspace::ParameterSet& params) {
+  return std::make_unique<LocalPlanner>(context, LocalPlannerOptions::fromParameters(params));
+});
+
 LocalPlanner::LocalPlanner(const PlanningContext& context, LocalPlannerOptions options)
-    : context_(context), options_(std::move(options)) {
-  if (!(options_.sigma > 0) || !(options_.C > 0) || !(options_.mu >= 0) || !(options_.step > 0))
-    throw std::invalid_argument("local planner: sigma, C and step must be positive, mu >= 0");
+    : Planner(context), options_(std::move(options)) {
+  if (const std::string err = options_.validate(); !err.empty())
+    throw std::invalid_argument("local planner: " + err);
 }
 
 void LocalPlanner::clear() {
   samples_ = {};
   labelling_ = {};
+  labelled_ = {};
   risk_.reset();
 }
 
-PlanStatus LocalPlanner::descend(const cspace::Query& query, PlanResult& result) const {
+PlanStatus LocalPlanner::descend(const cspace::Query& query, const Termination& stop, PlanResult& result) const {
   // Steepest descent of U = mu |x - x_goal| + |F(x)| in scaled coordinates x = sqrt(w) .* q, where
   // the metric is Euclidean. |F| has a kink on the decision boundary: there the steepest direction is
   // -(mu g + t grad F) with the subgradient weight t in [-1, 1] that minimises its length, so the
@@ -41,6 +75,10 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, PlanResult& result)
     return f;
   };
   for (int it = 0; it < options_.max_iterations; ++it) {
+    if (stop()) {
+      result.message = "time limit reached after " + std::to_string(it) + " descent steps";
+      return PlanStatus::kTimeout;
+    }
     const double to_goal = (x - goal).norm();
     if (to_goal <= reach && to_goal > options_.step && context_.validator.isValid(q_prev, query.goal)) {
       result.path.push_back(query.goal);
@@ -84,7 +122,8 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, PlanResult& result)
     const Eigen::VectorXd q_next = next.cwiseQuotient(scale);
     if (const int hit = context_.checker.check(q_next);
         hit != cspace::kFree || !context_.validator.isValid(q_prev, q_next)) {
-      result.message = "a descent step entered an obstacle (hit " + std::to_string(hit) + ")";
+      result.message = hit > 0 ? "a descent step entered obstacle '" + context_.checker.environment().byId(hit).name + "'"
+                               : "a descent step left the free space (hit " + std::to_string(hit) + ")";
       return PlanStatus::kFailed;
     }
     x = next;
@@ -106,49 +145,56 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, PlanResult& result)
   return PlanStatus::kLocalMinimum;
 }
 
-PlanResult LocalPlanner::solve(const cspace::Query& query, std::uint64_t seed) {
-  clear();
-  const auto checks0 = context_.checker.collisionChecks();
-  const auto calls0 = context_.validator.calls();
-  PlanResult result;
-  if (checkEndpoints(context_, query, result)) {
-    try {
-      auto t0 = Clock::now();
-      samples_ = sampleObstaclesByIk(context_.checker, context_.space, options_.sampling, seed);
-      labelling_ = labelByHyperplane(samples_.points, samples_.regions, kBoundaryRegion, query.start,
-                                     query.goal, options_.labelling, seed);
-      result.times.sampling_ms = msSince(t0);
-      if (!labelling_.both_classes)
-        throw std::invalid_argument("local planner: the labelling put every sample in one class");
-      t0 = Clock::now();
-      Eigen::VectorXd C(samples_.size());
-      for (int i = 0; i < samples_.size(); ++i)
-        C[i] = options_.C * (samples_.regions[i] == kBoundaryRegion
-                                 ? 1.0
-                                 : context_.checker.environment().byId(samples_.regions[i]).weight);
-      const Eigen::MatrixXd scaled = context_.space.metricScale().asDiagonal() * samples_.points;
-      svm::SolverOptions solver;
-      solver.eps = options_.eps;
-      const svm::Kernel kernel = svm::Kernel::rbfFromSigma(options_.sigma);
-      const svm::SolverResult solution = svm::solveBinary(scaled, labelling_.y, C, kernel, solver);
-      risk_.emplace(std::vector<svm::BinaryModel>{svm::BinaryModel::fromSolution(scaled, labelling_.y, solution, kernel)},
-                    std::vector<int>{1}, context_.space.metricScale());
-      result.support_vectors = risk_->model(0).numSupportVectors();
-      result.times.training_ms = msSince(t0);
-      t0 = Clock::now();
-      result.status = descend(query, result);
-      result.times.query_ms = msSince(t0);
-    } catch (const std::invalid_argument& e) {
-      result.status = PlanStatus::kInvalidInput;
-      result.message = e.what();
-    }
+void LocalPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+                          PlanResult& result) {
+  auto t0 = Clock::now();
+  try {  // a robot without closed-form IK, or start == goal: this query cannot be posed to the planner
+    samples_ = sampleObstaclesByIk(context_.checker, context_.space, options_.sampling, seed);
+    labelling_ = labelByHyperplane(samples_.points, samples_.regions, kBoundaryRegion, query.start, query.goal,
+                                   options_.labelling, seed);
+  } catch (const std::invalid_argument& e) {
+    result.status = PlanStatus::kInvalidInput;
+    result.message = e.what();
+    return;
   }
-  if (!result.solved() && result.status != PlanStatus::kLocalMinimum &&
+  result.times.sampling_ms += msSince(t0);
+  if (!labelling_.both_classes) {
+    result.status = PlanStatus::kFailed;
+    result.message = "local planner: the labelling put every sample in one class";
+    return;
+  }
+  labelled_.points = samples_.points;
+  for (int i = 0; i < labelling_.y.size(); ++i) {
+    labelled_.labels.push_back(labelling_.y[i] > 0 ? 1 : 2);
+    labelled_.boundary.push_back(0);
+  }
+  if (stop()) {
+    result.status = PlanStatus::kTimeout;
+    result.message = "time limit reached after sampling";
+    return;
+  }
+  t0 = Clock::now();
+  Eigen::VectorXd C(samples_.size());
+  for (int i = 0; i < samples_.size(); ++i)
+    C[i] = options_.C * (samples_.regions[i] == kBoundaryRegion
+                             ? 1.0
+                             : context_.checker.environment().byId(samples_.regions[i]).weight);
+  const Eigen::MatrixXd scaled = context_.space.metricScale().asDiagonal() * samples_.points;
+  svm::SolverOptions solver;
+  solver.eps = options_.eps;
+  const svm::Kernel kernel = svm::Kernel::rbfFromSigma(options_.sigma);
+  const svm::SolverResult solution = svm::solveBinary(scaled, labelling_.y, C, kernel, solver);
+  risk_.emplace(std::vector<svm::BinaryModel>{svm::BinaryModel::fromSolution(scaled, labelling_.y, solution, kernel)},
+                std::vector<int>{1}, context_.space.metricScale());
+  result.support_vectors = risk_->model(0).numSupportVectors();
+  result.times.training_ms += msSince(t0);
+  t0 = Clock::now();
+  result.status = descend(query, stop, result);
+  result.times.query_ms += msSince(t0);
+  // A failed descent keeps its partial path (pictures show where it stopped); nothing else does.
+  if (result.status != PlanStatus::kSolved && result.status != PlanStatus::kLocalMinimum &&
       result.status != PlanStatus::kFailed)
     result.path.clear();
-  result.collision_checks = context_.checker.collisionChecks() - checks0;
-  result.local_planner_calls = context_.validator.calls() - calls0;
-  return result;
 }
 
 }  // namespace svmp::planners

@@ -7,11 +7,12 @@
 // PlanStatus::kLocalMinimum; a step into a real obstacle ends the run as kFailed. Each step is checked
 // by the shared motion validator, so the returned path is collision-free at the scenario's resolution.
 // Within goal_radius (default sigma) of the goal a collision-free straight motion ends the descent.
-// Parameters (scenario `planners.local`): sigma, C, mu, step, labelling (balanced|random),
-// link_resolution, obstacle_resolution, boundary_resolution, max_samples, max_iterations,
-// stall_iterations.
+// Parameters (scenario `planners.local`): sigma, C, mu, step, boundary_tolerance, goal_radius, eps,
+// labelling (balanced|random), link_resolution, obstacle_resolution, boundary_resolution, max_samples,
+// max_iterations, stall_iterations. Everything depends on the query: build() learns nothing ahead.
 #include <optional>
 
+#include "cspace/parameters.hpp"
 #include "planners/hyperplane_labelling.hpp"
 #include "planners/ik_obstacle_sampler.hpp"
 #include "planners/planner.hpp"
@@ -36,6 +37,10 @@ struct LocalPlannerOptions {
   IkSamplingOptions sampling;
   int max_iterations = 20000;
   int stall_iterations = 200;  // steps without a new best distance to the goal
+
+  static LocalPlannerOptions fromParameters(const cspace::ParameterSet& params);
+  std::string validate() const;  // "" when usable
+  bool operator==(const LocalPlannerOptions&) const = default;
 };
 
 class LocalPlanner final : public Planner {
@@ -43,17 +48,25 @@ class LocalPlanner final : public Planner {
   LocalPlanner(const PlanningContext& context, LocalPlannerOptions options);
   std::string name() const override { return "local"; }
   void clear() override;
-  PlanResult solve(const cspace::Query& query, std::uint64_t seed) override;
+  void clearQuery() override { clear(); }
+  PlannerView view() const override { return {&labelled_, risk(), nullptr}; }
 
   const IkSamples& samples() const { return samples_; }
   const Labelling& labelling() const { return labelling_; }
   const RiskFunction* risk() const { return risk_ ? &*risk_ : nullptr; }
 
- private:
-  PlanStatus descend(const cspace::Query& query, PlanResult& result) const;
+ protected:
+  void buildRoadmap(std::uint64_t, const Termination&, PlanResult& result) override {
+    result.status = PlanStatus::kSolved;
+  }
+  void answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+              PlanResult& result) override;
 
-  PlanningContext context_;
+ private:
+  PlanStatus descend(const cspace::Query& query, const Termination& stop, PlanResult& result) const;
+
   LocalPlannerOptions options_;
+  cspace::ObstacleSamples labelled_;  // the samples with their class (1 or 2), for pictures
   IkSamples samples_;
   Labelling labelling_;
   std::optional<RiskFunction> risk_;

@@ -1,4 +1,16 @@
-#include "planners/ompl_bridge.hpp"
+// The OMPL bridge (Sucan, Moll, Kavraki, IEEE RAM 2012): our collision checker as OMPL's state validity
+// checker and our straight-line validator as its motion validator, so OMPL's PRM (Kavraki et al. 1996),
+// LazyPRM (Bohlin, Kavraki 2000) and RRTConnect (Kuffner, LaValle 2000) run on the same scenarios with
+// the same checking resolution and counters. OMPL works on coordinates scaled by sqrt(w), where its
+// Euclidean distance is the weighted metric of thesis eq. 4.3.
+// Parameters (scenario `planners.ompl-*`): time_limit (s, default 10), range (RRTConnect, 0 = OMPL's
+// default), k (PRM neighbours, 0 = OMPL's default).
+// Determinism: sampling uses our seeded generator, but OMPL's PRM interleaves growth and expansion by
+// wall time and checks for solutions in a second thread, so its runs are not exactly repeatable.
+// The planners register themselves as ompl-prm, ompl-lazyprm and ompl-rrtconnect
+// (planners/planner_registry.hpp); nothing else is exported.
+
+#include "planners/planner_registry.hpp"
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
@@ -26,9 +38,9 @@ Eigen::VectorXd toConfiguration(const ob::State* s, const Eigen::VectorXd& scale
   return q;
 }
 
-class ValidityChecker final : public ob::StateValidityChecker {
+class StateChecker final : public ob::StateValidityChecker {
  public:
-  ValidityChecker(const ob::SpaceInformationPtr& si, const PlanningContext& c)
+  StateChecker(const ob::SpaceInformationPtr& si, const PlanningContext& c)
       : ob::StateValidityChecker(si), context_(c) {}
   bool isValid(const ob::State* s) const override {
     return context_.checker.isValid(toConfiguration(s, context_.space.metricScale()));
@@ -52,22 +64,16 @@ class SegmentValidator final : public ob::MotionValidator {
   }
   bool checkMotion(const ob::State* s1, const ob::State* s2,
                    std::pair<ob::State*, double>& last_valid) const override {
-    // Walks from s1 so that the last valid configuration is known (RRT-style extension).
     const Eigen::VectorXd& scale = context_.space.metricScale();
-    const Eigen::VectorXd a = toConfiguration(s1, scale), b = toConfiguration(s2, scale);
-    const int segments = context_.validator.interiorPoints(context_.space.distance(a, b)) + 1;
-    Eigen::VectorXd q(a.size());
-    for (int i = 1; i <= segments; ++i) {
-      context_.space.interpolate(a, b, static_cast<double>(i) / segments, q);
-      if (!context_.checker.isValid(q)) {
-        last_valid.second = static_cast<double>(i - 1) / segments;
-        if (last_valid.first) si_->getStateSpace()->interpolate(s1, s2, last_valid.second, last_valid.first);
-        ++invalid_;
-        return false;
-      }
+    double t = 0;
+    if (context_.validator.checkMotion(toConfiguration(s1, scale), toConfiguration(s2, scale), t)) {
+      ++valid_;
+      return true;
     }
-    ++valid_;
-    return true;
+    last_valid.second = t;
+    if (last_valid.first) si_->getStateSpace()->interpolate(s1, s2, t, last_valid.first);
+    ++invalid_;
+    return false;
   }
 
  private:
@@ -105,26 +111,35 @@ class SeededSampler final : public ob::StateSampler {
   std::mt19937_64 rng_;
 };
 
+struct OmplOptions {
+  double time_limit = 10;  // s; the run's Termination may end it sooner
+  double range = 0;        // RRTConnect's range; 0: OMPL's default
+  int k = 0;               // PRM neighbours; 0: OMPL's default
+
+  static OmplOptions fromParameters(const cspace::ParameterSet& params) {
+    OmplOptions o;
+    o.time_limit = params.getDouble("time_limit", o.time_limit, 1e-3, 1e6);
+    o.range = params.getDouble("range", o.range, 0.0, 1e6);
+    o.k = static_cast<int>(params.getInt("k", o.k, 0, 10000));
+    return o;
+  }
+};
+
+// Every query starts OMPL afresh: the planners are OMPL's, with their own roadmaps; nothing to build.
 class OmplPlanner final : public Planner {
  public:
-  OmplPlanner(std::string name, const PlanningContext& context, double time_limit, double range, int k)
-      : name_(std::move(name)), context_(context), time_limit_(time_limit), range_(range), k_(k) {}
+  OmplPlanner(std::string name, const PlanningContext& context, OmplOptions options)
+      : Planner(context), name_(std::move(name)), options_(options) {}
   std::string name() const override { return name_; }
   void clear() override {}
 
-  PlanResult solve(const cspace::Query& query, std::uint64_t seed) override {
-    const auto checks0 = context_.checker.collisionChecks();
-    const auto calls0 = context_.validator.calls();
-    PlanResult result;
-    if (checkEndpoints(context_, query, result)) run(query, seed, result);
-    result.collision_checks = context_.checker.collisionChecks() - checks0;
-    result.local_planner_calls = context_.validator.calls() - calls0;
-    return result;
+ protected:
+  void buildRoadmap(std::uint64_t, const Termination&, PlanResult& result) override {
+    result.status = PlanStatus::kSolved;
   }
 
- private:
-  void run(const cspace::Query& query, std::uint64_t seed, PlanResult& result) {
-    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  void answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+              PlanResult& result) override {
     const Eigen::VectorXd& scale = context_.space.metricScale();
     const int dim = context_.space.dim();
     auto space = std::make_shared<ob::RealVectorStateSpace>(dim);
@@ -139,7 +154,7 @@ class OmplPlanner final : public Planner {
       return std::make_shared<SeededSampler>(s, sampler_seed++ * 0x9E3779B97F4A7C15ULL + 1);
     });
     auto si = std::make_shared<ob::SpaceInformation>(space);
-    si->setStateValidityChecker(std::make_shared<ValidityChecker>(si, context_));
+    si->setStateValidityChecker(std::make_shared<StateChecker>(si, context_));
     si->setMotionValidator(std::make_shared<SegmentValidator>(si, context_));
     si->setup();
     auto pdef = std::make_shared<ob::ProblemDefinition>(si);
@@ -152,20 +167,21 @@ class OmplPlanner final : public Planner {
     ob::PlannerPtr planner;
     if (name_ == "ompl-prm") {
       auto prm = std::make_shared<og::PRM>(si);
-      if (k_ > 0) prm->setMaxNearestNeighbors(k_);
+      if (options_.k > 0) prm->setMaxNearestNeighbors(options_.k);
       planner = prm;
     } else if (name_ == "ompl-lazyprm") {
       planner = std::make_shared<og::LazyPRM>(si);
     } else {
       auto rrt = std::make_shared<og::RRTConnect>(si);
-      if (range_ > 0) rrt->setRange(range_);
+      if (options_.range > 0) rrt->setRange(options_.range);
       planner = rrt;
     }
     planner->setProblemDefinition(pdef);
     planner->setup();
     const auto t0 = Clock::now();
-    const ob::PlannerStatus status = planner->solve(time_limit_);
-    result.times.query_ms = msSince(t0);
+    const Termination until = Termination::when([&stop] { return stop(); }, Termination::after(options_.time_limit));
+    const ob::PlannerStatus status = planner->solve(ob::PlannerTerminationCondition([&until] { return until(); }));
+    result.times.query_ms += msSince(t0);
     ob::PlannerData data(si);
     planner->getPlannerData(data);
     result.milestones = data.numVertices();
@@ -184,21 +200,26 @@ class OmplPlanner final : public Planner {
   }
 
   std::string name_;
-  PlanningContext context_;
-  double time_limit_, range_;
-  int k_;
+  OmplOptions options_;
 };
+
+// OMPL's informational messages would drown the driver's log; set once, when the planners register.
+bool quietOmpl() {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  return true;
+}
+[[maybe_unused]] const bool kOmplQuiet = quietOmpl();
+
+auto factory(const char* name) {
+  return [name](const PlanningContext& context, const cspace::ParameterSet& params) {
+    return std::make_unique<OmplPlanner>(name, context, OmplOptions::fromParameters(params));
+  };
+}
 
 }  // namespace
 
-std::unique_ptr<Planner> makeOmplPlanner(const std::string& name, const PlanningContext& context,
-                                         const cspace::ParameterSet& params) {
-  if (name != "ompl-prm" && name != "ompl-lazyprm" && name != "ompl-rrtconnect")
-    throw cspace::ScenarioError("unknown OMPL planner '" + name + "'");
-  const double time_limit = params.getDouble("time_limit", 10.0, 1e-3, 1e6);
-  const double range = params.getDouble("range", 0.0, 0.0);
-  const int k = static_cast<int>(params.getInt("k", 0, 0, 10000));
-  return std::make_unique<OmplPlanner>(name, context, time_limit, range, k);
-}
+SVMP_REGISTER_PLANNER("ompl-prm", factory("ompl-prm"));
+SVMP_REGISTER_PLANNER("ompl-lazyprm", factory("ompl-lazyprm"));
+SVMP_REGISTER_PLANNER("ompl-rrtconnect", factory("ompl-rrtconnect"));
 
 }  // namespace svmp::planners

@@ -31,11 +31,12 @@ struct PhaseTimes {
 };
 
 struct PlanResult {
-  PlanStatus status = PlanStatus::kFailed;
+  PlanStatus status = PlanStatus::kFailed;  // of Planner::build(): kSolved means ready for queries
   std::string message;                // why, when not solved
   std::vector<Eigen::VectorXd> path;  // start ... goal, straight segments between
   std::uint64_t collision_checks = 0;
   std::uint64_t local_planner_calls = 0;
+  std::uint64_t distance_queries = 0;  // FCL distance queries (certification)
   std::uint64_t milestones = 0;
   std::uint64_t roadmap_edges = 0;
   std::uint64_t support_vectors = 0;

@@ -1,43 +1,88 @@
 #pragma once
-// The common interface of every planner the driver runs, the context they share (one scenario's
-// space, collision checker and local planner, so counts are comparable), and the factory by name.
+// The common interface of every planner (docs/architecture.md): the context they share (one scenario's
+// space, validity checker and motion validator, so counts are comparable), the build / query / clear
+// separation that makes a roadmap answer many queries, a termination condition every planner honours,
+// and what a planner shows of itself (PlannerView) for pictures. Planners register by name in
+// planners/planner_registry.hpp.
+//
+// Errors: planning failures (no path, time out, a start in collision, too few obstacle classes) are
+// statuses in PlanResult; exceptions are for misuse (query before build, std::logic_error) and bad
+// input (cspace::ScenarioError from the factories).
+//
+// Thread safety: a planner is used by one thread at a time; it may use context.threads OpenMP threads
+// inside a call, never sharing mutable FCL objects, generators or scratch buffers between them.
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "cspace/collision_checker.hpp"
 #include "cspace/configuration_space.hpp"
 #include "cspace/motion_validator.hpp"
-#include "cspace/parameters.hpp"
+#include "cspace/obstacle_sampler.hpp"
 #include "cspace/scenario.hpp"
+#include "cspace/validity_checker.hpp"
 #include "planners/plan_result.hpp"
+#include "planners/termination.hpp"
 
 namespace svmp::planners {
 
+class RiskFunction;
+class Roadmap;
+
 struct PlanningContext {
   const cspace::ConfigurationSpace& space;
-  const cspace::CollisionChecker& checker;
+  const cspace::ValidityChecker& checker;
   const cspace::MotionValidator& validator;
   int threads = 1;
 };
 
-class Planner {
- public:
-  virtual ~Planner() = default;
-  virtual std::string name() const = 0;
-  // Forgets everything learned (roadmap, models); the next solve starts from scratch.
-  virtual void clear() = 0;
-  // Answers one query; every random choice flows from `seed`. Counters and times cover this call.
-  virtual PlanResult solve(const cspace::Query& query, std::uint64_t seed) = 0;
+// What a planner learned, for pictures and inspection; null where it has none.
+struct PlannerView {
+  const cspace::ObstacleSamples* samples = nullptr;  // labelled samples (obstacle ids, or 1/2 for classes)
+  const RiskFunction* risk = nullptr;                // decision functions F_k
+  const Roadmap* roadmap = nullptr;
 };
 
-// Names: svmp, prm, local, ompl-prm, ompl-lazyprm, ompl-rrtconnect. Reads its parameters from `params`
-// (throws cspace::ScenarioError naming field and value; unknown keys are errors too).
-std::unique_ptr<Planner> makePlanner(const std::string& name, const PlanningContext& context,
-                                     const cspace::ParameterSet& params);
-std::vector<std::string> plannerNames();
+class Planner {
+ public:
+  explicit Planner(const PlanningContext& context) : context_(context) {}
+  virtual ~Planner() = default;
+  virtual std::string name() const = 0;
 
-// Shared by the roadmap planners: start and goal must be valid, else the status says which.
+  // Learns what does not depend on a query (roadmap, models); every random choice flows from `seed`.
+  // The result's status is kSolved when the planner is ready for queries, else why not (kTimeout,
+  // kFailed, kInvalidInput); its counters and times cover the construction. Planners with nothing to
+  // learn ahead return kSolved at once.
+  PlanResult build(std::uint64_t seed, const Termination& stop = {});
+  // Answers one query on what build() learned (throws std::logic_error before a successful build).
+  // May grow the roadmap (repair); clearQuery() undoes nothing learned, it only forgets query state.
+  PlanResult query(const cspace::Query& query, std::uint64_t seed, const Termination& stop = {});
+  virtual void clearQuery() {}
+  // Forgets everything learned; the next query needs a new build().
+  virtual void clear() = 0;
+  // clear(), build() and query() in one: counters, times and status cover all of it.
+  PlanResult solve(const cspace::Query& query, std::uint64_t seed, const Termination& stop = {});
+
+  virtual PlannerView view() const { return {}; }
+  bool built() const { return built_; }
+  const PlanningContext& context() const { return context_; }
+
+ protected:
+  // The planner's steps; the base class counts checks and calls around them and checks the query's
+  // end points before answer() runs.
+  virtual void buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) = 0;
+  virtual void answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+                      PlanResult& result) = 0;
+  // Called after clear() by subclasses.
+  void forgetBuild() { built_ = false; }
+
+  PlanningContext context_;
+
+ private:
+  bool built_ = false;
+};
+
+// Start and goal must have the space's dimension and be valid, else the status says which (naming the
+// obstacle hit).
 bool checkEndpoints(const PlanningContext& context, const cspace::Query& query, PlanResult& result);
 
 }  // namespace svmp::planners

@@ -1,52 +1,82 @@
 #include "planners/prm_planner.hpp"
 
-#include <chrono>
+#include <atomic>
 
-#include "planners/nearest_neighbors.hpp"
+#include "planners/planner_registry.hpp"
 #include "planners/roadmap_builder.hpp"
 
 namespace svmp::planners {
 
+PrmOptions PrmOptions::fromParameters(const cspace::ParameterSet& params) {
+  PrmOptions o;
+  // Each milestone costs about 100 bytes per dimension with its neighbours: 1e7 is a few GB at most.
+  o.samples = static_cast<int>(params.getInt("samples", o.samples, 1, 10000000));
+  o.k = static_cast<int>(params.getInt("k", o.k, 1, 10000));
+  return o;
+}
+
+std::string PrmOptions::validate() const {
+  if (samples < 1 || samples > 10000000) return "samples must be in [1, 1e7], got " + std::to_string(samples);
+  if (k < 1) return "k must be >= 1, got " + std::to_string(k);
+  return "";
+}
+
+SVMP_REGISTER_PLANNER("prm", [](const PlanningContext& context, const cspace::ParameterSet& params) {
+  return std::make_unique<PrmPlanner>(context, PrmOptions::fromParameters(params));
+});
+
 PrmPlanner::PrmPlanner(const PlanningContext& context, PrmOptions options)
-    : context_(context), options_(options) {}
+    : Planner(context), options_(options) {
+  if (const std::string err = options_.validate(); !err.empty()) throw std::invalid_argument("prm: " + err);
+}
 
-PlanResult PrmPlanner::solve(const cspace::Query& query, std::uint64_t seed) {
-  clear();
-  const auto checks0 = context_.checker.collisionChecks();
-  const auto calls0 = context_.validator.calls();
-  PlanResult result;
-  if (checkEndpoints(context_, query, result)) {
-    auto t0 = Clock::now();
-    // Draw all samples from one generator first, then test them in parallel: the milestone set does
-    // not depend on the thread count.
-    cspace::Rng rng(seed);
-    std::vector<Eigen::VectorXd> candidates(options_.samples);
-    for (auto& q : candidates) q = context_.space.sampleUniform(rng);
-    std::vector<char> free(candidates.size());
+void PrmPlanner::clear() {
+  forgetBuild();
+  roadmap_.clear();
+  nn_.reset();
+}
+
+void PrmPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) {
+  auto t0 = Clock::now();
+  // Draw all samples from one generator first, then test them in parallel: the milestone set does not
+  // depend on the thread count.
+  cspace::Rng rng(seed);
+  std::vector<Eigen::VectorXd> candidates(options_.samples);
+  for (auto& q : candidates) q = context_.space.sampleUniform(rng);
+  std::vector<char> free(candidates.size());
+  std::atomic<bool> stopped{false};
 #pragma omp parallel for schedule(static) num_threads(context_.threads)
-    for (int i = 0; i < options_.samples; ++i) free[i] = context_.checker.isValid(candidates[i]);
-    for (int i = 0; i < options_.samples; ++i)
-      if (free[i]) roadmap_.addNode(candidates[i]);
-    result.times.sampling_ms = msSince(t0);
-
-    t0 = Clock::now();
-    const NearestNeighbors nn(roadmap_.nodes(), context_.space.metricScale());
-    connectMilestones(roadmap_, nn, context_, options_.k);
-    result.times.roadmap_ms = msSince(t0);
-
-    t0 = Clock::now();
-    Roadmap with_query = roadmap_;
-    QueryOutcome outcome = queryRoadmap(with_query, nn, context_, query, options_.k);
-    result.times.query_ms = msSince(t0);
-    result.path = std::move(outcome.path);
-    result.status = result.path.empty() ? PlanStatus::kFailed : PlanStatus::kSolved;
-    if (!result.solved()) result.message = "start and goal are not connected by the roadmap";
+  for (int i = 0; i < options_.samples; ++i) {
+    if (stopped.load(std::memory_order_relaxed) || ((i & 63) == 0 && stop() && (stopped = true))) continue;
+    free[i] = context_.checker.isValid(candidates[i]);
   }
+  for (int i = 0; i < options_.samples && !stopped; ++i)
+    if (free[i]) roadmap_.addNode(candidates[i]);
+  result.times.sampling_ms += msSince(t0);
+
+  t0 = Clock::now();
+  bool done = !stopped;
+  if (done) {
+    nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
+    done = connectMilestones(roadmap_, *nn_, context_, options_.k, 0, stop);
+  }
+  result.times.roadmap_ms += msSince(t0);
+  result.status = done ? PlanStatus::kSolved : PlanStatus::kTimeout;
+  if (!done) result.message = "time limit reached while building the roadmap";
   result.milestones = roadmap_.numNodes();
   result.roadmap_edges = roadmap_.numEdges();
-  result.collision_checks = context_.checker.collisionChecks() - checks0;
-  result.local_planner_calls = context_.validator.calls() - calls0;
-  return result;
+}
+
+void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termination&, PlanResult& result) {
+  const auto t0 = Clock::now();
+  Roadmap with_query = roadmap_;
+  QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k);
+  result.times.query_ms += msSince(t0);
+  result.path = std::move(outcome.path);
+  result.status = result.path.empty() ? PlanStatus::kFailed : PlanStatus::kSolved;
+  if (!result.solved()) result.message = "start and goal are not connected by the roadmap";
+  result.milestones = roadmap_.numNodes();
+  result.roadmap_edges = roadmap_.numEdges();
 }
 
 }  // namespace svmp::planners

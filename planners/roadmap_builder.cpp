@@ -24,11 +24,15 @@ void connectToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const Planni
 
 }  // namespace
 
-void connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first) {
+bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
+                       int k, int first, const Termination& stop) {
   // Ask the tree for more than k so that k remain after dropping same-component neighbours.
   const int search = std::min(nn.size(), 3 * k + 1);
-  for (int i = first; i < roadmap.numNodes(); ++i) connectToNearest(roadmap, nn, context, i, k, search);
+  for (int i = first; i < roadmap.numNodes(); ++i) {
+    if (stop()) return false;
+    connectToNearest(roadmap, nn, context, i, k, search);
+  }
+  return true;
 }
 
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,

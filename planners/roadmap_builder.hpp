@@ -10,8 +10,9 @@
 namespace svmp::planners {
 
 // Connects nodes [first, numNodes) of the roadmap; `nn` indexes the roadmap's nodes [0, nn.size()).
-void connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first = 0);
+// Returns false when `stop` ended it early.
+bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
+                       int k, int first = 0, const Termination& stop = {});
 
 struct QueryOutcome {
   std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected

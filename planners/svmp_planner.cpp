@@ -1,23 +1,68 @@
 #include "planners/svmp_planner.hpp"
 
+#include <atomic>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <random>
 
+#include "planners/planner_registry.hpp"
 #include "planners/roadmap_builder.hpp"
 #include "svm/one_vs_rest.hpp"
 
 namespace svmp::planners {
 
+SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
+  SvmpOptions o;
+  o.sigma = params.getDouble("sigma", o.sigma, 1e-9, 1e6);
+  o.C = params.getDouble("C", o.C, 1e-9, 1e12);
+  o.step = params.getDouble("step", o.step, 1e-9, 1e6);
+  o.samples_per_tree = static_cast<int>(params.getInt("samples_per_tree", o.samples_per_tree, 1, 1000000));
+  o.k = static_cast<int>(params.getInt("k", o.k, 1, 10000));
+  o.eps = params.getDouble("eps", o.eps, 1e-15, 1);
+  o.cache_mb = params.getDouble("cache_mb", o.cache_mb, 1, 1e6);
+  o.truncated = params.getBool("truncated", o.truncated);
+  o.descent_tolerance = params.getDouble("descent_tolerance", o.descent_tolerance, 0, 1e6);
+  o.descent_step = params.getDouble("descent_step", o.descent_step, 1e-12, 1e6);
+  o.descent_iterations = static_cast<int>(params.getInt("descent_iterations", o.descent_iterations, 1, 1000000));
+  o.duplicate_radius = params.getDouble("duplicate_radius", o.duplicate_radius, 0, 1e6);
+  o.repair_rounds = static_cast<int>(params.getInt("repair_rounds", o.repair_rounds, 0, 1000));
+  o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
+  o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
+  o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
+  return o;
+}
+
+std::string SvmpOptions::validate() const {
+  if (!(sigma > 0) || !std::isfinite(sigma)) return "sigma must be positive, got " + std::to_string(sigma);
+  if (!(C > 0) || !std::isfinite(C)) return "C must be positive, got " + std::to_string(C);
+  if (!(step > 0) || !std::isfinite(step)) return "step must be positive, got " + std::to_string(step);
+  if (samples_per_tree < 1 || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0)
+    return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2)";
+  if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
+  return "";
+}
+
+DescentOptions SvmpOptions::descent() const {
+  DescentOptions d;
+  d.tolerance = descent_tolerance;
+  d.max_step = descent_step > 0 ? descent_step : sigma;
+  d.max_iterations = descent_iterations;
+  return d;
+}
+
+SVMP_REGISTER_PLANNER("svmp", [](const PlanningContext& context, const cspace::ParameterSet& params) {
+  return std::make_unique<SvmpPlanner>(context, SvmpOptions::fromParameters(params));
+});
+
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
-    : context_(context), options_(options) {
-  if (!(options_.sigma > 0)) throw std::invalid_argument("svmp: sigma must be positive");
-  if (!(options_.C > 0)) throw std::invalid_argument("svmp: C must be positive");
-  if (options_.descent.max_step <= 0) options_.descent.max_step = options_.sigma;
+    : Planner(context), options_(options) {
+  if (const std::string err = options_.validate(); !err.empty()) throw std::invalid_argument("svmp: " + err);
   if (options_.duplicate_radius < 0) options_.duplicate_radius = 0.5 * options_.step;
 }
 
 void SvmpPlanner::clear() {
+  forgetBuild();
   samples_ = {};
   risk_.reset();
   roadmap_.clear();
@@ -31,7 +76,9 @@ int SvmpPlanner::supportVectors() const {
   return n;
 }
 
-void SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times) {
+PlannerView SvmpPlanner::view() const { return {&samples_, risk(), &roadmap_}; }
+
+bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Termination& stop) {
   const auto t0 = Clock::now();
   cspace::ObstacleSamplerOptions opt;
   opt.step = options_.step;
@@ -40,11 +87,14 @@ void SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times) {
   // Surfaces located to a quarter of the checking resolution: finer than any passage the motion
   // validator can tell apart, coarse enough to cost a few bisection checks per boundary node.
   opt.refine_tolerance = context_.validator.resolution() / 4;
+  opt.stop = stop.asFunction();
   samples_ = cspace::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
   times.sampling_ms += msSince(t0);
+  return !samples_.stopped;
 }
 
-void SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
+std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
+  if (samples_.size() == 0) throw std::logic_error("svmp: trainMultiSvm before sampleObstacle");
   const auto t0 = Clock::now();
   const cspace::Environment& env = context_.checker.environment();
   std::map<int, double> weights;
@@ -54,9 +104,8 @@ void SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
     const std::string have = weights.empty() ? "none"
                              : only > 0      ? "only '" + env.byId(only).name + "'"
                                              : "only the self-collision region";
-    throw std::invalid_argument(
-        "svmp: one-versus-rest needs samples of at least two obstacles, got " + have +
-        (samples_.warnings.empty() ? "" : " (" + samples_.warnings.front() + ")"));
+    return "svmp: one-versus-rest needs samples of at least two obstacles, got " + have +
+           (samples_.warnings.empty() ? "" : " (" + samples_.warnings.front() + ")");
   }
   const Eigen::MatrixXd scaled = context_.space.metricScale().asDiagonal() * samples_.points;
   svm::SolverOptions solver;
@@ -68,15 +117,19 @@ void SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   risk_.emplace(std::move(ovr.models), std::move(ovr.classes), context_.space.metricScale(),
                 options_.truncated);
   times.training_ms += msSince(t0);
+  return "";
 }
 
-int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts,
-                               const std::vector<int>& classes, bool keep_free_starts) {
+int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
+                               const Termination& stop, bool keep_free_starts) {
   const int n = static_cast<int>(starts.size());
   std::vector<Eigen::VectorXd> ends(n);
   std::vector<int> end_class(n);
+  const DescentOptions descent = options_.descent();
+  std::atomic<bool> stopped{false};
 #pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
   for (int i = 0; i < n; ++i) {
+    if (stopped.load(std::memory_order_relaxed) || (stop() && (stopped = true))) continue;
     int k = classes[i];
     if (k < 0) {  // the nearest decision boundary: the class whose |F_k| is smallest here
       double best = std::numeric_limits<double>::infinity();
@@ -85,9 +138,10 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts,
         if (r < best) best = r, k = c;
       }
     }
-    ends[i] = risk_->descend(k, starts[i], context_.space, options_.descent).q;
+    ends[i] = risk_->descend(k, starts[i], context_.space, descent).q;
     end_class[i] = k;
   }
+  if (stopped) return 0;
   // Near-duplicates are dropped before any collision check, in a fixed order (deterministic).
   const Eigen::VectorXd& scale = context_.space.metricScale();
   const double r2 = options_.duplicate_radius * options_.duplicate_radius;
@@ -124,8 +178,8 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts,
   return added;
 }
 
-void SvmpPlanner::findBoundaryMilestones(PhaseTimes& times) {
-  if (!risk_) throw std::invalid_argument("svmp: findBoundaryMilestones before trainMultiSvm");
+bool SvmpPlanner::findBoundaryMilestones(PhaseTimes& times, const Termination& stop) {
+  if (!risk_) throw std::logic_error("svmp: findBoundaryMilestones before trainMultiSvm");
   const auto t0 = Clock::now();
   std::vector<Eigen::VectorXd> starts;
   std::vector<int> classes;
@@ -134,8 +188,9 @@ void SvmpPlanner::findBoundaryMilestones(PhaseTimes& times) {
     starts.push_back(samples_.points.col(i));
     classes.push_back(risk_->classIndex(samples_.labels[i]));
   }
-  addMilestones(starts, classes);
+  addMilestones(starts, classes, stop);
   times.milestones_ms += msSince(t0);
+  return !stop();
 }
 
 std::optional<Eigen::VectorXd> SvmpPlanner::centreAlongNormal(int k, const Eigen::VectorXd& q) const {
@@ -195,14 +250,17 @@ std::optional<Eigen::VectorXd> SvmpPlanner::centreAlongNormal(int k, const Eigen
   return centre;
 }
 
-void SvmpPlanner::makeRoadmap(PhaseTimes& times) {
+bool SvmpPlanner::makeRoadmap(PhaseTimes& times, const Termination& stop) {
+  if (!risk_) throw std::logic_error("svmp: makeRoadmap before trainMultiSvm");
   const auto t0 = Clock::now();
   nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
-  connectMilestones(roadmap_, *nn_, context_, options_.k);
+  const bool done = connectMilestones(roadmap_, *nn_, context_, options_.k, 0, stop);
   times.roadmap_ms += msSince(t0);
+  return done;
 }
 
-bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng) {
+bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng,
+                         const Termination& stop) {
   // Frontier of a component: its node closest to a node outside it. Random configurations around the
   // segment between the two are guided down to the decision boundaries (thesis ch. 3.5).
   const Eigen::VectorXd& scale = context_.space.metricScale();
@@ -234,16 +292,45 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, csp
   }
   if (starts.empty()) return false;
   const int old_n = roadmap_.numNodes();
-  if (addMilestones(starts, std::vector<int>(starts.size(), -1), true) == 0) return false;
+  if (addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true) == 0) return false;
   nn_.emplace(roadmap_.nodes(), scale);
-  connectMilestones(roadmap_, *nn_, context_, options_.k, old_n);
+  connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
   return true;
 }
 
-PlanResult SvmpPlanner::query(const cspace::Query& query, std::uint64_t seed) {
-  PlanResult result;
-  if (!checkEndpoints(context_, query, result)) return result;
-  if (!nn_) throw std::invalid_argument("svmp: query before makeRoadmap");
+void SvmpPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) {
+  PhaseTimes& times = result.times;
+  result.status = PlanStatus::kTimeout;
+  result.message = "time limit reached while sampling obstacles";
+  if (sampleObstacle(seed, times, stop)) {
+    result.message = trainMultiSvm(times);
+    if (!result.message.empty()) {
+      result.status = PlanStatus::kInvalidInput;
+    } else if (stop()) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached after training";
+    } else if (!findBoundaryMilestones(times, stop)) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached while finding boundary milestones";
+    } else if (!makeRoadmap(times, stop)) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached while connecting the roadmap";
+    } else {
+      result.status = PlanStatus::kSolved;
+      result.message.clear();
+    }
+  }
+  fillCounters(result);
+}
+
+void SvmpPlanner::fillCounters(PlanResult& result) const {
+  result.milestones = roadmap_.numNodes();
+  result.roadmap_edges = roadmap_.numEdges();
+  result.support_vectors = supportVectors();
+}
+
+void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+                         PlanResult& result) {
   const auto t0 = Clock::now();
   cspace::Rng rng(seed ^ 0xA5A5A5A5ULL);
   for (int round = 0;; ++round) {
@@ -254,8 +341,14 @@ PlanResult SvmpPlanner::query(const cspace::Query& query, std::uint64_t seed) {
       result.status = PlanStatus::kSolved;
       break;
     }
-    if (round >= options_.repair_rounds ||
-        !repair(with_query, outcome.start_node, outcome.goal_node, rng)) {
+    const bool repaired = round < options_.repair_rounds && !stop() &&
+                          repair(with_query, outcome.start_node, outcome.goal_node, rng, stop);
+    if (stop()) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
+      break;
+    }
+    if (!repaired) {
       int start_size = 0, goal_size = 0;
       for (int i = 0; i < with_query.numNodes(); ++i) {
         start_size += with_query.connected(i, outcome.start_node);
@@ -268,36 +361,8 @@ PlanResult SvmpPlanner::query(const cspace::Query& query, std::uint64_t seed) {
       break;
     }
   }
-  result.times.query_ms = msSince(t0);
-  return result;
-}
-
-PlanResult SvmpPlanner::solve(const cspace::Query& q, std::uint64_t seed) {
-  clear();
-  const auto checks0 = context_.checker.collisionChecks();
-  const auto calls0 = context_.validator.calls();
-  PlanResult result;
-  PhaseTimes times;
-  if (checkEndpoints(context_, q, result)) {
-    try {
-      sampleObstacle(seed, times);
-      trainMultiSvm(times);
-      findBoundaryMilestones(times);
-      makeRoadmap(times);
-      result = query(q, seed);
-      times.query_ms = result.times.query_ms;
-    } catch (const std::invalid_argument& e) {
-      result.status = PlanStatus::kInvalidInput;
-      result.message = e.what();
-    }
-  }
-  result.times = times;
-  result.milestones = roadmap_.numNodes();
-  result.roadmap_edges = roadmap_.numEdges();
-  result.support_vectors = supportVectors();
-  result.collision_checks = context_.checker.collisionChecks() - checks0;
-  result.local_planner_calls = context_.validator.calls() - calls0;
-  return result;
+  result.times.query_ms += msSince(t0);
+  fillCounters(result);
 }
 
 }  // namespace svmp::planners

@@ -7,10 +7,12 @@
 // Query (A*). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
 // disconnection are guided down to the decision boundaries and the roadmap is reconnected.
 // The roadmap answers many queries: build() once, query() many times; clear() forgets it.
+// Parameters (scenario `planners.svmp`, `--set svmp.KEY=VALUE`): the fields of SvmpOptions, same names.
 #include <optional>
 
 #include "cspace/obstacle_sampler.hpp"
 #include "planners/nearest_neighbors.hpp"
+#include "cspace/parameters.hpp"
 #include "planners/planner.hpp"
 #include "planners/risk_function.hpp"
 #include "planners/roadmap.hpp"
@@ -26,29 +28,40 @@ struct SvmpOptions {
   double eps = 1e-3;              // SMO stopping tolerance
   double cache_mb = 100;
   bool truncated = true;          // exp(-5)-truncated evaluation of F
-  DescentOptions descent;         // max_step defaults to sigma when not set
+  double descent_tolerance = 1e-3;  // |F| at which a descent counts as on the boundary
+  double descent_step = -1;       // longest descent step (weighted metric); <= 0: sigma
+  int descent_iterations = 100;
   double duplicate_radius = -1;   // milestones closer than this are merged; < 0: step / 2
   int repair_rounds = 5;          // query repair rounds (0 disables)
   int repair_samples = 100;       // random configurations per repair round
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
   bool sample_self_collision = true;  // the self-collision region is one more class
+
+  // Reads every field from `params` under its own name, with its bounds; absent keys keep the
+  // defaults above (the one place they are written). Throws cspace::ScenarioError.
+  static SvmpOptions fromParameters(const cspace::ParameterSet& params);
+  // "" when usable, else what is wrong.
+  std::string validate() const;
+  // The milestone descent with descent_step resolved.
+  DescentOptions descent() const;
+  bool operator==(const SvmpOptions&) const = default;
 };
 
 class SvmpPlanner final : public Planner {
  public:
+  // Throws std::invalid_argument when options.validate() fails.
   SvmpPlanner(const PlanningContext& context, SvmpOptions options);
   std::string name() const override { return "svmp"; }
   void clear() override;
-  PlanResult solve(const cspace::Query& query, std::uint64_t seed) override;
+  PlannerView view() const override;
 
-  // The steps, callable one by one; each adds its time to `times`. Throw std::invalid_argument when
-  // called out of order or when obstacle sampling yields fewer than two classes.
-  void sampleObstacle(std::uint64_t seed, PhaseTimes& times);
-  void trainMultiSvm(PhaseTimes& times);
-  void findBoundaryMilestones(PhaseTimes& times);
-  void makeRoadmap(PhaseTimes& times);
-  // Answers a query on the current roadmap (repairing it when needed); does not clear it.
-  PlanResult query(const cspace::Query& query, std::uint64_t seed);
+  // The steps of build(), callable one by one; each adds its time to `times`. Out of order they throw
+  // std::logic_error. sampleObstacle returns false when `stop` ended it; trainMultiSvm returns "" or
+  // why it cannot train (fewer than two obstacle classes sampled).
+  bool sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Termination& stop = {});
+  std::string trainMultiSvm(PhaseTimes& times);
+  bool findBoundaryMilestones(PhaseTimes& times, const Termination& stop = {});
+  bool makeRoadmap(PhaseTimes& times, const Termination& stop = {});
 
   const cspace::ObstacleSamples& samples() const { return samples_; }
   const RiskFunction* risk() const { return risk_ ? &*risk_ : nullptr; }
@@ -56,22 +69,28 @@ class SvmpPlanner final : public Planner {
   int supportVectors() const;
   const SvmpOptions& options() const { return options_; }
 
+ protected:
+  void buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) override;
+  void answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+              PlanResult& result) override;
+
  private:
+  void fillCounters(PlanResult& result) const;
   // Descends each start point on the risk of its class (or, with class -1, of the nearest boundary)
   // and adds the collision-free, non-duplicate results as milestones. With keep_free_starts, a start
   // whose descent ends in collision is kept itself when it is free (the repair's hybrid with uniform
   // PRM sampling that thesis ch. 3.5 suggests where obstacle regions dominate). Returns how many were
   // added.
+  // Stops early (returning what it added) when `stop` fires.
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
-                    bool keep_free_starts = false);
-  bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng);
+                    const Termination& stop, bool keep_free_starts = false);
+  bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng, const Termination& stop);
   // A descended milestone that collides lies where the SVM boundary, smooth at the scale sigma, misses
   // a passage narrower than sigma. Along the boundary's normal (grad F_k) within sigma, find the free
   // interval nearest to it (doubling steps from resolution/4, then bisection of both edges) and return
   // its middle: the centre of the passage on that line. Empty when no free interval is found.
   std::optional<Eigen::VectorXd> centreAlongNormal(int k, const Eigen::VectorXd& q) const;
 
-  PlanningContext context_;
   SvmpOptions options_;
   cspace::ObstacleSamples samples_;
   std::optional<RiskFunction> risk_;

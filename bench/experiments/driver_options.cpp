@@ -16,13 +16,24 @@ long parseLong(const std::string& flag, const std::string& value, long min, long
   return v;
 }
 
+double parseDouble(const std::string& flag, const std::string& value, double min, double max) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end != '\0' || !(v >= min && v <= max))
+    throw std::invalid_argument("flag " + flag + ": expected a number in [" + std::to_string(min) + ", " +
+                                std::to_string(max) + "], got '" + value + "'");
+  return v;
+}
+
 }  // namespace
 
 const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
-         "                 [--json FILE] [--svg DIR] [--set PLANNER.KEY=VALUE ...] [--check]\n"
+         "                 [--json FILE] [--svg DIR] [--set PLANNER.KEY=VALUE ...] [--time-limit SEC]\n"
+         "                 [--check]\n"
          "  --planners  comma-separated: svmp, prm, local, ompl-prm, ompl-lazyprm, ompl-rrtconnect\n"
          "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
+         "  --time-limit  seconds per run; a planner that reaches it reports status timeout\n"
          "  --check     print the scenario's summary and the status of start and goal, then exit\n";
 }
 
@@ -44,6 +55,7 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     } else if (flag == "--runs") o.runs = static_cast<int>(parseLong(flag, value(), 1, 100000));
     else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, 1L << 62));
     else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, 1024));
+    else if (flag == "--time-limit") o.time_limit = parseDouble(flag, value(), 1e-6, 1e7);
     else if (flag == "--json") o.json_path = value();
     else if (flag == "--svg") o.svg_dir = value();
     else if (flag == "--set") {

@@ -12,6 +12,7 @@ struct DriverOptions {
   int runs = 1;
   unsigned long seed = 1;
   int threads = 1;
+  double time_limit = 0;  // seconds per run (build and queries); 0: none
   std::string json_path;
   std::string svg_dir;
   std::vector<std::pair<std::string, std::string>> overrides;  // ("svmp.sigma", "0.3")

@@ -1,7 +1,5 @@
 #include "bench/experiments/experiment.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,13 +9,11 @@
 #include <memory>
 #include <sstream>
 
+#include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/svg_writer.hpp"
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
-#include "bench/experiments/svg_writer.hpp"
-#include "planners/local_planner.hpp"
-#include "planners/planner.hpp"
-#include "planners/prm_planner.hpp"
-#include "planners/svmp_planner.hpp"
+#include "planners/planner_registry.hpp"
 
 namespace svmp::experiments {
 namespace {
@@ -48,6 +44,19 @@ Stats collect(const PlannerRuns& runs, bool solved_only, F field) {
   return statsOf(v);
 }
 
+using Clock = planners::Clock;
+
+// Folds the build's counters and phase times into the first query's result.
+void addBuild(const planners::PlanResult& build, planners::PlanResult& query) {
+  query.collision_checks += build.collision_checks;
+  query.local_planner_calls += build.local_planner_calls;
+  query.distance_queries += build.distance_queries;
+  query.times.sampling_ms += build.times.sampling_ms;
+  query.times.training_ms += build.times.training_ms;
+  query.times.milestones_ms += build.times.milestones_ms;
+  query.times.roadmap_ms += build.times.roadmap_ms;
+}
+
 // Path quality measured by an independent checker, so the planners' counters are untouched.
 void measurePath(const cspace::Scenario& scenario, const cspace::ConfigurationSpace& space,
                  const cspace::CollisionChecker& checker, RunRecord& record) {
@@ -65,8 +74,14 @@ void measurePath(const cspace::Scenario& scenario, const cspace::ConfigurationSp
   for (size_t i = 1; i < path.size(); ++i) {
     const double length = space.distance(path[i - 1], path[i]);
     record.path_length += length;
-    const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
-    for (int k = 1; k <= n; ++k) {
+    // In double before converting: a huge count must fail the path, never wrap to a small one.
+    const double pieces = std::max(1.0, std::ceil(length / step));
+    if (!(pieces <= static_cast<double>(cspace::kMaxSegmentChecks))) {
+      record.strict_correct = false;
+      continue;
+    }
+    const auto n = static_cast<std::int64_t>(pieces);
+    for (std::int64_t k = 1; k <= n; ++k) {
       space.interpolate(path[i - 1], path[i], static_cast<double>(k) / n, q);
       visit(q);
     }
@@ -101,22 +116,10 @@ void writePictures(const std::string& dir, const cspace::Scenario& scenario, con
   content.scenario = &scenario;
   content.path = &record.result.path;
   content.title = scenario.name + ": " + planner.name() + " (" + planners::planStatusName(record.result.status) + ")";
-  cspace::ObstacleSamples local_samples;  // the local planner's samples, coloured by their label
-  if (const auto* svmp = dynamic_cast<const planners::SvmpPlanner*>(&planner)) {
-    content.samples = &svmp->samples();
-    content.risk = svmp->risk();
-    content.roadmap = &svmp->roadmap();
-  } else if (const auto* prm = dynamic_cast<const planners::PrmPlanner*>(&planner)) {
-    content.roadmap = &prm->roadmap();
-  } else if (const auto* local = dynamic_cast<const planners::LocalPlanner*>(&planner)) {
-    local_samples.points = local->samples().points;
-    for (int i = 0; i < local->labelling().y.size(); ++i) {
-      local_samples.labels.push_back(local->labelling().y[i] > 0 ? 1 : 2);
-      local_samples.boundary.push_back(0);
-    }
-    content.samples = &local_samples;
-    content.risk = local->risk();
-  }
+  const planners::PlannerView view = planner.view();
+  content.samples = view.samples;
+  content.risk = view.risk;
+  content.roadmap = view.roadmap;
   const std::string base = dir + "/" + scenario.name + "_" + planner.name();
   if (writeConfigurationSpaceSvg(base + "_cspace.svg", content)) log << "  wrote " << base << "_cspace.svg\n";
   if (writeWorkspaceSvg(base + "_workspace.svg", content)) log << "  wrote " << base << "_workspace.svg\n";
@@ -134,10 +137,9 @@ int PlannerRuns::strictCorrect() const {
 
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
                                        std::ostream& log) {
-  omp_set_num_threads(options.threads);
   const cspace::ConfigurationSpace space = scenario.makeSpace();
   const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
-  const cspace::MotionValidator validator(checker, space, scenario.resolution);
+  const cspace::DiscreteMotionValidator validator(checker, space, scenario.resolution);
   const cspace::CollisionChecker measuring(scenario.robot, scenario.environment, scenario.self_collision);
   const planners::PlanningContext context{space, checker, validator, options.threads};
 
@@ -157,21 +159,44 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
   }
 
   std::vector<PlannerRuns> results;
+  const auto& queries = scenario.queries;
   for (size_t p = 0; p < planners.size(); ++p) {
     PlannerRuns runs{options.planners[p], {}};
+    planners::Planner& planner = *planners[p];
     for (int r = 0; r < options.runs; ++r) {
       const std::uint64_t seed = options.seed + r;
-      RunRecord record;
-      const auto t0 = std::chrono::steady_clock::now();
-      record.result = planners[p]->solve(scenario.queries.front(), seed);
-      record.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      measurePath(scenario, space, measuring, record);
-      if (r == 0 && !options.svg_dir.empty()) writePictures(options.svg_dir, scenario, *planners[p], record, log);
-      log << "  " << runs.planner << " seed " << seed << ": " << planners::planStatusName(record.result.status)
-          << ", " << record.result.collision_checks << " checks, " << std::fixed << std::setprecision(1)
-          << record.time_ms << " ms" << (record.result.message.empty() ? "" : " (" + record.result.message + ")")
-          << "\n";
-      runs.runs.push_back(std::move(record));
+      const planners::Termination stop =
+          options.time_limit > 0 ? planners::Termination::after(options.time_limit) : planners::Termination();
+      // One query: solve() (clear, build, answer). Several: one build per run answers them all; the
+      // first query's record carries the build, later ones what one more query costs.
+      planners::PlanResult build;
+      double build_ms = 0;
+      if (queries.size() > 1) {
+        const auto t0 = Clock::now();
+        build = planner.build(seed, stop);
+        build_ms = planners::msSince(t0);
+      }
+      for (size_t i = 0; i < queries.size(); ++i) {
+        RunRecord record;
+        record.query = static_cast<int>(i);
+        const auto t0 = Clock::now();
+        if (queries.size() == 1) record.result = planner.solve(queries[i], seed, stop);
+        else if (!planner.built()) record.result = build;
+        else record.result = planner.query(queries[i], seed, stop);
+        record.time_ms = planners::msSince(t0);
+        if (i == 0 && queries.size() > 1 && planner.built()) {
+          record.time_ms += build_ms;
+          addBuild(build, record.result);
+        }
+        measurePath(scenario, space, measuring, record);
+        if (r == 0 && i == 0 && !options.svg_dir.empty()) writePictures(options.svg_dir, scenario, planner, record, log);
+        log << "  " << runs.planner << " seed " << seed << (queries.size() > 1 ? " query " + std::to_string(i) : "")
+            << ": " << planners::planStatusName(record.result.status) << ", " << record.result.collision_checks
+            << " checks, " << std::fixed << std::setprecision(1) << record.time_ms << " ms"
+            << (record.result.message.empty() ? "" : " (" + record.result.message + ")") << "\n";
+        runs.runs.push_back(std::move(record));
+        if (queries.size() > 1 && !planner.built()) break;  // the build failed: no query can be answered
+      }
     }
     results.push_back(std::move(runs));
   }
@@ -235,18 +260,7 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
     o << "] }" << (p + 1 < results.size() ? "," : "") << "\n";
   }
   o << "  ]\n}\n";
-  const std::string tmp = file + ".tmp";
-  {
-    std::ofstream f(tmp);
-    if (!f || !(f << o.str()) || !f.flush()) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error(file + ": cannot write the JSON file");
-    }
-  }
-  if (std::rename(tmp.c_str(), file.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(file + ": cannot write the JSON file");
-  }
+  writeFileAtomically(file, o.str());
 }
 
 }  // namespace svmp::experiments

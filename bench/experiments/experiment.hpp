@@ -14,7 +14,8 @@ namespace svmp::experiments {
 
 struct RunRecord {
   planners::PlanResult result;
-  double time_ms = 0;        // wall time of solve()
+  int query = 0;             // index into the scenario's queries
+  double time_ms = 0;        // wall time of solve() (first query: with the build)
   double path_length = 0;    // weighted metric, solved runs only
   double min_clearance = 0;  // FCL distance along the path at resolution / 4
   bool strict_correct = false;

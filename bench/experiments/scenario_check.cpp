@@ -46,7 +46,7 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
         << (o.weight != 1.0 ? " weight " + std::to_string(o.weight) : "") << "\n";
   }
   bool ok = true;
-  cspace::MotionValidator fine(checker, space, scenario.resolution / 4);
+  cspace::DiscreteMotionValidator fine(checker, space, scenario.resolution / 4);
   for (size_t i = 0; i < scenario.queries.size(); ++i) {
     const auto& q = scenario.queries[i];
     for (const auto& [label, config] : {std::pair{"start", &q.start}, std::pair{"goal ", &q.goal}}) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "bench/experiments/atomic_file.hpp"
 #include "cspace/collision_checker.hpp"
 #include "robots/point_robot.hpp"
 
@@ -41,17 +42,6 @@ std::string escapeXml(const std::string& text) {
   for (char ch : text)
     out += ch == '&' ? "&amp;" : ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : std::string(1, ch);
   return out;
-}
-
-void writeWhole(const std::string& file, const std::string& text) {
-  const std::string tmp = file + ".tmp";
-  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.close();
-  if (!out || std::rename(tmp.c_str(), file.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("svg: cannot write " + file);
-  }
 }
 
 // A plot of the y-up data rectangle [lower, upper] on the y-down SVG page, aspect ratio kept within
@@ -383,7 +373,7 @@ bool writeConfigurationSpaceSvg(const std::string& file, const SvgContent& conte
     for (const Eigen::VectorXd& q : content.roadmap->nodes())
       canvas.circle(q, 2.2, "fill=\"black\"");
   drawPathAndEnds(canvas, content);
-  writeWhole(file, canvas.document(content.title, subtitle.str(),
+  writeFileAtomically(file, canvas.document(content.title, subtitle.str(),
                                    obstacleLegend(*scenario.environment), "q1", "q2"));
   return true;
 }
@@ -462,7 +452,7 @@ bool writeWorkspaceSvg(const std::string& file, const SvgContent& content, int s
   if (!point_robot && has_path)
     subtitle +=
         "; " + std::to_string(poses.size()) + " poses along the path (start solid, goal dashed)";
-  writeWhole(file, canvas.document(content.title, subtitle, obstacleLegend(*scenario.environment),
+  writeFileAtomically(file, canvas.document(content.title, subtitle, obstacleLegend(*scenario.environment),
                                    "x", "y"));
   return true;
 }

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "bench/experiments/atomic_file.hpp"
 #include "bench/experiments/driver_options.hpp"
 #include "bench/experiments/experiment.hpp"
 #include "bench/experiments/scenario_check.hpp"
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
       std::cerr << "svmp-plan: flag --svg: cannot create directory '" << options.svg_dir << "': " << error.message() << "\n";
       return 2;
     }
+    if (!options.json_path.empty()) experiments::checkWritable("--json", options.json_path);
     std::cerr << "svmp-plan: " << scenario.name << ": running " << options.planners.size() << " planner(s), "
               << options.runs << " run(s) each\n";
     const auto results = experiments::runExperiment(scenario, options, std::cerr);

@@ -4,6 +4,7 @@
 #include <memory>
 #include <random>
 
+#include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
 #include "robots/point_robot.hpp"
 
@@ -30,7 +31,7 @@ struct WallWorld {
 
 TEST(MotionValidatorTest, RejectsASegmentThroughAWallAndAcceptsAFreeOne) {
   WallWorld world(5, 0.1);
-  const MotionValidator validator(world.checker, world.space, 0.05);
+  const DiscreteMotionValidator validator(world.checker, world.space, 0.05);
   EXPECT_FALSE(validator.isValid(Eigen::Vector2d(1, 5), Eigen::Vector2d(9, 5)));
   EXPECT_TRUE(validator.isValid(Eigen::Vector2d(1, 9), Eigen::Vector2d(9, 9)));
   EXPECT_TRUE(validator.isValid(Eigen::Vector2d(1, 1), Eigen::Vector2d(1, 9)));
@@ -40,38 +41,60 @@ TEST(MotionValidatorTest, RejectsASegmentThroughAWallAndAcceptsAFreeOne) {
   EXPECT_TRUE(validator.isValid(Eigen::Vector2d(1, 5), Eigen::Vector2d(4.98, 5)));
   EXPECT_FALSE(validator.isValidIncludingEnd(Eigen::Vector2d(1, 5), Eigen::Vector2d(4.98, 5)));
   EXPECT_TRUE(validator.isValidIncludingEnd(Eigen::Vector2d(1, 9), Eigen::Vector2d(9, 9)));
-  EXPECT_THROW(MotionValidator(world.checker, world.space, 0), std::invalid_argument);
-  EXPECT_THROW(MotionValidator(world.checker, world.space, NAN), std::invalid_argument);
+  EXPECT_THROW(DiscreteMotionValidator(world.checker, world.space, 0), std::invalid_argument);
+  EXPECT_THROW(DiscreteMotionValidator(world.checker, world.space, NAN), std::invalid_argument);
 }
 
 TEST(MotionValidatorTest, ChecksExactlyTheInteriorPoints) {
   WallWorld world(5, 0.1);
-  const MotionValidator validator(world.checker, world.space, 0.25);
+  const DiscreteMotionValidator validator(world.checker, world.space, 0.25);
   // Length 8 at resolution 0.25: 32 pieces, 31 interior points.
   EXPECT_EQ(validator.interiorPoints(8.0), 31);
   EXPECT_EQ(validator.interiorPoints(0.25), 0);
   EXPECT_EQ(validator.interiorPoints(0.26), 1);
   EXPECT_EQ(validator.interiorPoints(0.0), 0);
-  world.checker.resetCounters();
+  std::uint64_t before = world.checker.collisionChecks();
   EXPECT_TRUE(validator.isValid(Eigen::Vector2d(1, 9), Eigen::Vector2d(9, 9)));
-  EXPECT_EQ(world.checker.collisionChecks(), 31u);
-  world.checker.resetCounters();
+  EXPECT_EQ(world.checker.collisionChecks() - before, 31u);
+  before = world.checker.collisionChecks();
   EXPECT_TRUE(validator.isValid(Eigen::Vector2d(1, 1), Eigen::Vector2d(1, 1)));
-  EXPECT_EQ(world.checker.collisionChecks(), 0u);
+  EXPECT_EQ(world.checker.collisionChecks() - before, 0u);
   // Bisection order: the midpoint goes first, so a wall at the middle costs one check.
-  world.checker.resetCounters();
+  before = world.checker.collisionChecks();
   EXPECT_FALSE(validator.isValid(Eigen::Vector2d(1, 5), Eigen::Vector2d(9, 5)));
-  EXPECT_EQ(world.checker.collisionChecks(), 1u);
+  EXPECT_EQ(world.checker.collisionChecks() - before, 1u);
+}
+
+TEST(MotionValidatorTest, RefusesASegmentNeedingTooManyChecksInsteadOfCallingItFree) {
+  // 2^31 checks once wrapped to a negative count and the segment through the wall passed.
+  WallWorld world(5, 0.1);
+  const DiscreteMotionValidator validator(world.checker, world.space, 1e-9);
+  EXPECT_THROW(validator.isValid(Eigen::Vector2d(1, 5), Eigen::Vector2d(9, 5)), std::length_error);
+  double last = -1;
+  EXPECT_THROW(validator.checkMotion(Eigen::Vector2d(1, 5), Eigen::Vector2d(9, 5), last), std::length_error);
+}
+
+TEST(MotionValidatorTest, CheckMotionReportsTheLastValidFraction) {
+  WallWorld world(5, 0.1);
+  const DiscreteMotionValidator validator(world.checker, world.space, 0.25);
+  double last = -1;
+  EXPECT_FALSE(validator.checkMotion(Eigen::Vector2d(1, 5), Eigen::Vector2d(9, 5), last));
+  // The wall's face is at x = 4.95: the last sample before it, at 0.25 spacing from x = 1, is 4.75.
+  EXPECT_NEAR(1 + 8 * last, 4.75, 1e-12);
+  EXPECT_TRUE(validator.checkMotion(Eigen::Vector2d(1, 9), Eigen::Vector2d(9, 9), last));
+  const std::uint64_t calls = validator.calls();
+  validator.checkMotion(Eigen::Vector2d(1, 9), Eigen::Vector2d(9, 9), last);
+  EXPECT_EQ(validator.calls(), calls + 1);
 }
 
 TEST(MotionValidatorTest, UsesTheWeightedMetric) {
   WallWorld world(5, 0.1);
   const ConfigurationSpace heavy_x(Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 10), Eigen::Vector2d(4, 1));
-  const MotionValidator validator(world.checker, heavy_x, 0.25);
-  world.checker.resetCounters();
+  const DiscreteMotionValidator validator(world.checker, heavy_x, 0.25);
+  const std::uint64_t before = world.checker.collisionChecks();
   // Metric length of an 8-long x move with w_x = 4 is 16: 64 pieces, 63 interior points.
   EXPECT_TRUE(validator.isValid(Eigen::Vector2d(1, 9), Eigen::Vector2d(9, 9)));
-  EXPECT_EQ(world.checker.collisionChecks(), 63u);
+  EXPECT_EQ(world.checker.collisionChecks() - before, 63u);
 }
 
 TEST(MotionValidatorTest, WallThinnerThanResolutionCanBeMissedThickerIsAlwaysCaught) {
@@ -79,7 +102,7 @@ TEST(MotionValidatorTest, WallThinnerThanResolutionCanBeMissedThickerIsAlwaysCau
   // 1, 1.25, ..., so a 0.01 wall at x in [5.12, 5.13] falls between two samples and is missed.
   {
     WallWorld world(5.125, 0.01);
-    const MotionValidator validator(world.checker, world.space, 0.25);
+    const DiscreteMotionValidator validator(world.checker, world.space, 0.25);
     EXPECT_TRUE(validator.isValid(Eigen::Vector2d(1, 5), Eigen::Vector2d(9, 5)));
   }
   // A wall thicker than the sample spacing always contains a sample, wherever it stands.
@@ -87,7 +110,7 @@ TEST(MotionValidatorTest, WallThinnerThanResolutionCanBeMissedThickerIsAlwaysCau
   std::uniform_real_distribution<double> where(2, 8);
   for (int trial = 0; trial < 50; ++trial) {
     WallWorld world(where(rng), 0.26);
-    const MotionValidator validator(world.checker, world.space, 0.25);
+    const DiscreteMotionValidator validator(world.checker, world.space, 0.25);
     EXPECT_FALSE(validator.isValid(Eigen::Vector2d(1, 5), Eigen::Vector2d(9, 5)));
   }
 }

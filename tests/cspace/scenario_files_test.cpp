@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
 #include "cspace/scenario.hpp"
 
@@ -34,7 +35,7 @@ TEST(ScenarioFilesTest, EveryFileLoadsAndItsWitnessIsFree) {
     }
     const CollisionChecker checker(s.robot, s.environment, s.self_collision);
     const ConfigurationSpace space = s.makeSpace();
-    const MotionValidator fine(checker, space, s.resolution / 4);
+    const DiscreteMotionValidator fine(checker, space, s.resolution / 4);
     ASSERT_FALSE(s.queries.empty());
     for (size_t i = 0; i < s.queries.size(); ++i) {
       const Query& query = s.queries[i];

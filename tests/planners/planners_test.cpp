@@ -167,8 +167,9 @@ TEST(InvalidQueries, SvmpStepsOutOfOrderThrow) {
   auto w = makeWorld(gapScenario(0.03, kPlanners));
   SvmpPlanner svmp(w->context, SvmpOptions{});
   PhaseTimes times;
-  EXPECT_THROW(svmp.findBoundaryMilestones(times), std::invalid_argument);
-  EXPECT_THROW(svmp.query(w->query(), 1), std::invalid_argument);
+  EXPECT_THROW(svmp.findBoundaryMilestones(times), std::logic_error);
+  EXPECT_THROW(svmp.makeRoadmap(times), std::logic_error);
+  EXPECT_THROW(svmp.query(w->query(), 1), std::logic_error);
 }
 
 // makePlanner: unknown planners and bad parameters are ScenarioErrors naming the field.

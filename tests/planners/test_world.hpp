@@ -12,7 +12,7 @@
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
 #include "cspace/scenario.hpp"
-#include "planners/planner.hpp"
+#include "planners/planner_registry.hpp"
 
 namespace svmp::planners::test {
 
@@ -20,7 +20,7 @@ struct World {
   cspace::Scenario scenario;
   cspace::ConfigurationSpace space;
   cspace::CollisionChecker checker;
-  cspace::MotionValidator validator;
+  cspace::DiscreteMotionValidator validator;
   PlanningContext context;
 
   World(const std::string& yaml, int threads)

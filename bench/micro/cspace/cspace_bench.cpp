@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
@@ -88,7 +89,7 @@ void BM_MotionValidator(benchmark::State& state, const std::string& name) {
   const CollisionChecker checker(world.robot, world.env);
   const svmp::cspace::ConfigurationSpace space(world.robot->lowerLimits(), world.robot->upperLimits(),
                                                Eigen::VectorXd::Ones(world.robot->dof()));
-  const svmp::cspace::MotionValidator validator(checker, space, 0.01);
+  const svmp::cspace::DiscreteMotionValidator validator(checker, space, 0.01);
   const Eigen::MatrixXd a = randomConfigurations(*world.robot, 256);
   Eigen::MatrixXd b(a.rows(), a.cols());
   std::mt19937_64 rng(2);

@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "cspace/collision_checker.hpp"
 #include "cspace/obstacle_sampler.hpp"
 #include "cspace/scenario.hpp"
 #include "planners/nearest_neighbors.hpp"
@@ -17,7 +18,7 @@ struct World {
   cspace::Scenario scenario;
   cspace::ConfigurationSpace space;
   cspace::CollisionChecker checker;
-  cspace::MotionValidator validator;
+  cspace::DiscreteMotionValidator validator;
   planners::PlanningContext context;
   std::unique_ptr<planners::SvmpPlanner> svmp;
 
@@ -55,8 +56,7 @@ void BM_MilestoneDescent(benchmark::State& state) {
   std::vector<int> boundary;
   for (int i = 0; i < samples.size(); ++i)
     if (samples.boundary[i]) boundary.push_back(i);
-  planners::DescentOptions options;
-  options.max_step = w.svmp->options().sigma;
+  const planners::DescentOptions options = w.svmp->options().descent();
   size_t next = 0;
   for (auto _ : state) {
     const int i = boundary[next++ % boundary.size()];

@@ -1,0 +1,36 @@
+#include "bench/experiments/atomic_file.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace svmp::experiments {
+
+void writeFileAtomically(const std::string& file, const std::string& text) {
+  const std::string tmp = file + ".tmp";
+  errno = 0;
+  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+  if (out) out << text;
+  if (out) out.close();
+  if (!out || std::rename(tmp.c_str(), file.c_str()) != 0) {
+    const std::string reason = errno ? std::strerror(errno) : "write failed";
+    std::remove(tmp.c_str());
+    throw std::runtime_error(file + ": cannot write: " + reason);
+  }
+}
+
+void checkWritable(const std::string& flag, const std::string& file) {
+  const std::string probe = file + ".tmp";
+  errno = 0;
+  std::ofstream out(probe, std::ios::binary | std::ios::trunc);
+  if (!out) {
+    const std::string reason = errno ? std::strerror(errno) : "cannot open";
+    throw std::runtime_error("flag " + flag + ": cannot write '" + file + "': " + reason);
+  }
+  out.close();
+  std::remove(probe.c_str());
+}
+
+}  // namespace svmp::experiments

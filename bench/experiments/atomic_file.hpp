@@ -1,0 +1,14 @@
+#pragma once
+// Output files are written whole or not at all: the text goes to FILE.tmp, which is renamed over FILE
+// only when every byte was written. Throws std::runtime_error naming the file and the OS reason.
+#include <string>
+
+namespace svmp::experiments {
+
+void writeFileAtomically(const std::string& file, const std::string& text);
+
+// Throws std::runtime_error (naming `flag`, the file and the OS reason) when `file` could not be created
+// in its directory; run before the work so a bad path fails at once, not after the whole run.
+void checkWritable(const std::string& flag, const std::string& file);
+
+}  // namespace svmp::experiments
