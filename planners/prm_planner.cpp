@@ -41,16 +41,20 @@ void PrmPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanR
   // Draw all samples from one generator first, then test them in parallel: the milestone set does not
   // depend on the thread count.
   cspace::Rng rng(seed);
-  std::vector<Eigen::VectorXd> candidates(options_.samples);
-  for (auto& q : candidates) q = context_.space.sampleUniform(rng);
-  std::vector<char> free(candidates.size());
   std::atomic<bool> stopped{false};
+  std::vector<Eigen::VectorXd> candidates;
+  for (int i = 0; i < options_.samples && !stopped; ++i) {
+    if ((i & 4095) == 0 && stop()) stopped = true;
+    candidates.push_back(context_.space.sampleUniform(rng));
+  }
+  const int n = static_cast<int>(candidates.size());
+  std::vector<char> free(n);
 #pragma omp parallel for schedule(static) num_threads(context_.threads)
-  for (int i = 0; i < options_.samples; ++i) {
+  for (int i = 0; i < n; ++i) {
     if (stopped.load(std::memory_order_relaxed) || ((i & 63) == 0 && stop() && (stopped = true))) continue;
     free[i] = context_.checker.isValid(candidates[i]);
   }
-  for (int i = 0; i < options_.samples && !stopped; ++i)
+  for (int i = 0; i < n && !stopped; ++i)
     if (free[i]) roadmap_.addNode(candidates[i]);
   result.times.sampling_ms += msSince(t0);
 

@@ -1,0 +1,193 @@
+// The seams of docs/architecture.md: a planner registered from this file alone runs in the driver, a
+// validity checker swapped into PlanningContext is the only one every planner (and the OMPL bridge)
+// calls, a time limit ends every planner with kTimeout, a built roadmap answers several queries, and
+// the registry's defaults are the option structs' defaults.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "bench/experiments/experiment.hpp"
+#include "planners/local_planner.hpp"
+#include "planners/planner_registry.hpp"
+#include "planners/prm_planner.hpp"
+#include "planners/svmp_planner.hpp"
+#include "test_world.hpp"
+
+namespace svmp::planners {
+namespace {
+
+using test::gapScenario;
+using test::makeWorld;
+
+// The simplest planner there is: the straight line, when the validator accepts it.
+class StraightLinePlanner final : public Planner {
+ public:
+  using Planner::Planner;
+  std::string name() const override { return "test-straight"; }
+  void clear() override { forgetBuild(); }
+
+ protected:
+  void buildRoadmap(std::uint64_t, const Termination&, PlanResult& result) override {
+    result.status = PlanStatus::kSolved;
+  }
+  void answer(const cspace::Query& q, std::uint64_t, const Termination&, PlanResult& result) override {
+    if (!context_.validator.isValid(q.start, q.goal)) {
+      result.message = "the straight line is blocked";
+      return;
+    }
+    result.status = PlanStatus::kSolved;
+    result.path = {q.start, q.goal};
+  }
+};
+
+SVMP_REGISTER_PLANNER("test-straight", [](const PlanningContext& c, const cspace::ParameterSet&) {
+  return std::make_unique<StraightLinePlanner>(c);
+});
+
+TEST(Seams, PlannerRegisteredFromATestFileRunsInTheDriver) {
+  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
+  const cspace::Scenario scenario = cspace::loadScenario(path);
+  experiments::DriverOptions options;
+  options.scenario = path;
+  options.planners = {"test-straight", "prm"};
+  options.runs = 2;
+  std::ostringstream log, table;
+  const auto results = experiments::runExperiment(scenario, options, log);
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_EQ(results[0].planner, "test-straight");
+  ASSERT_EQ(results[0].runs.size(), 2u);
+  // Fig 3.5's start and goal are separated by obstacles: the straight line fails, and says why.
+  EXPECT_EQ(results[0].runs[0].result.status, PlanStatus::kFailed);
+  EXPECT_EQ(results[0].runs[0].result.message, "the straight line is blocked");
+  EXPECT_EQ(results[0].runs[0].result.local_planner_calls, 1u);
+  experiments::printTable(scenario, options, results, table);
+  EXPECT_NE(table.str().find("test-straight"), std::string::npos);
+}
+
+// Forwards to the FCL checker and counts what it was asked.
+class CountingChecker final : public cspace::ValidityChecker {
+ public:
+  explicit CountingChecker(const cspace::ValidityChecker& inner) : inner_(inner) {}
+  const robots::Robot& robot() const override { return inner_.robot(); }
+  const cspace::Environment& environment() const override { return inner_.environment(); }
+  int check(const Eigen::Ref<const Eigen::VectorXd>& q) const override {
+    ++asked_;
+    return inner_.check(q);
+  }
+  int checkIncludingVirtual(const Eigen::Ref<const Eigen::VectorXd>& q) const override {
+    ++asked_;
+    return inner_.checkIncludingVirtual(q);
+  }
+  bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override {
+    ++asked_;
+    return inner_.hits(q, id);
+  }
+  double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return inner_.clearance(q); }
+  bool checksSelfCollision() const override { return inner_.checksSelfCollision(); }
+  std::uint64_t collisionChecks() const override { return asked_; }
+  std::uint64_t asked() const { return asked_; }
+
+ private:
+  const cspace::ValidityChecker& inner_;
+  mutable std::atomic<std::uint64_t> asked_{0};
+};
+
+TEST(Seams, SwappedValidityCheckerIsTheOneEveryPlannerCalls) {
+  auto w = makeWorld(gapScenario(0.03,
+                                 "  svmp: {sigma: 0.06, step: 0.05, samples_per_tree: 100}\n"
+                                 "  prm: {samples: 300}\n"
+                                 "  ompl-rrtconnect: {time_limit: 2}\n"
+                                 "  ompl-prm: {time_limit: 0.05}\n"
+                                 "  ompl-lazyprm: {time_limit: 0.05}\n"));
+  const CountingChecker counting(w->checker);
+  const cspace::DiscreteMotionValidator validator(counting, w->space, w->scenario.resolution);
+  const PlanningContext context{w->space, counting, validator, 1};
+  for (const std::string name : {"svmp", "prm", "ompl-rrtconnect", "ompl-prm", "ompl-lazyprm"}) {
+    if (name.rfind("ompl-", 0) == 0 && plannerNames().end() == std::find(plannerNames().begin(), plannerNames().end(), name))
+      continue;  // built without OMPL
+    auto planner = makePlanner(name, context, w->scenario.paramsFor(name));
+    const std::uint64_t fcl_before = w->checker.collisionChecks(), asked_before = counting.asked();
+    const PlanResult r = planner->solve(w->query(), 1);
+    const std::uint64_t fcl = w->checker.collisionChecks() - fcl_before, asked = counting.asked() - asked_before;
+    EXPECT_GT(asked, 0u) << name;
+    // Nothing reached FCL except through the swapped checker, and the result counts what it was asked.
+    EXPECT_EQ(fcl, asked) << name;
+    EXPECT_EQ(r.collision_checks, asked) << name;
+  }
+}
+
+TEST(Seams, OneMillisecondLimitEndsEveryPlannerWithTimeout) {
+  // Large enough that no planner finishes in a millisecond.
+  auto w = makeWorld(gapScenario(0.01,
+                                 "  svmp: {sigma: 0.03, step: 0.01, samples_per_tree: 20000}\n"
+                                 "  prm: {samples: 2000000}\n"
+                                 "  ompl-prm: {time_limit: 60}\n"));
+  for (const std::string name : {"svmp", "prm", "ompl-prm"}) {
+    if (name == "ompl-prm" && plannerNames().end() == std::find(plannerNames().begin(), plannerNames().end(), name))
+      continue;
+    auto planner = w->planner(name);
+    const auto t0 = Clock::now();
+    const PlanResult r = planner->solve(w->query(), 1, Termination::after(1e-3));
+    const double ms = msSince(t0);
+    EXPECT_EQ(r.status, PlanStatus::kTimeout) << name << ": " << planStatusName(r.status) << " " << r.message;
+    // A small multiple of the limit; generous because the machine is shared (not a speed assertion:
+    // without the limit these runs take seconds).
+    EXPECT_LT(ms, 250.0) << name;
+    std::printf("[ info     ] %s stopped %.1f ms after a 1 ms limit\n", name.c_str(), ms);
+  }
+}
+
+TEST(Seams, LocalPlannerHonoursTheTimeLimit) {
+  std::ifstream file(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig2_6.yaml");
+  const std::string yaml((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  auto w = makeWorld(yaml);
+  ASSERT_TRUE(w->planner("local")->solve(w->query(), 1).solved());
+  const PlanResult r = w->planner("local")->solve(w->query(), 1, Termination::when([] { return true; }));
+  EXPECT_EQ(r.status, PlanStatus::kTimeout) << planStatusName(r.status) << " " << r.message;
+}
+
+TEST(Seams, BuiltRoadmapAnswersManyQueries) {
+  auto w = makeWorld(gapScenario(0.03, "  svmp: {sigma: 0.06, step: 0.05, samples_per_tree: 200}\n  prm: {samples: 2000}\n"));
+  for (const std::string name : {"svmp", "prm"}) {
+    auto planner = w->planner(name);
+    EXPECT_THROW(planner->query(w->query(), 1), std::logic_error) << name;
+    const PlanResult built = planner->build(7);
+    ASSERT_TRUE(built.solved()) << name << ": " << built.message;
+    EXPECT_GT(built.milestones, 0u);
+    const cspace::Query reverse{w->query().goal, w->query().start, {}};
+    const cspace::Query other{Eigen::Vector2d(0.1, 0.9), Eigen::Vector2d(0.9, 0.1), {}};
+    for (const auto& q : {w->query(), reverse, other}) {
+      const PlanResult r = planner->query(q, 7);
+      ASSERT_TRUE(r.solved()) << name << ": " << r.message;
+      EXPECT_EQ((r.path.front() - q.start).norm(), 0.0);
+      EXPECT_EQ((r.path.back() - q.goal).norm(), 0.0);
+      // A query costs a small part of the build: it connects two configurations.
+      EXPECT_LT(r.collision_checks, built.collision_checks) << name;
+    }
+    // solve() from the same seed builds the same roadmap and finds the same path as build() + query().
+    const PlanResult again = planner->query(w->query(), 7);
+    const PlanResult solved = planner->solve(w->query(), 7);
+    ASSERT_EQ(again.path.size(), solved.path.size()) << name;
+    for (size_t i = 0; i < again.path.size(); ++i) EXPECT_EQ(again.path[i], solved.path[i]) << name;
+  }
+}
+
+TEST(Seams, RegistryDefaultsAreTheOptionStructsDefaults) {
+  const cspace::ParameterSet empty("test.yaml", "planners.x.", {});
+  EXPECT_TRUE(SvmpOptions::fromParameters(empty) == SvmpOptions{});
+  EXPECT_TRUE(PrmOptions::fromParameters(empty) == PrmOptions{});
+  EXPECT_TRUE(LocalPlannerOptions::fromParameters(empty) == LocalPlannerOptions{});
+  // The descent step follows sigma unless given.
+  SvmpOptions o;
+  o.sigma = 0.37;
+  EXPECT_EQ(o.descent().max_step, 0.37);
+  o.descent_step = 0.01;
+  EXPECT_EQ(o.descent().max_step, 0.01);
+}
+
+}  // namespace
+}  // namespace svmp::planners
