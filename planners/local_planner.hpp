@@ -12,7 +12,7 @@
 // max_iterations, stall_iterations. Everything depends on the query: build() learns nothing ahead.
 #include <optional>
 
-#include "cspace/parameters.hpp"
+#include "cspace/scenario/parameters.hpp"
 #include "planners/hyperplane_labelling.hpp"
 #include "planners/ik_obstacle_sampler.hpp"
 #include "planners/planner.hpp"
@@ -66,7 +66,7 @@ class LocalPlanner final : public Planner {
   PlanStatus descend(const cspace::Query& query, const Termination& stop, PlanResult& result) const;
 
   LocalPlannerOptions options_;
-  cspace::ObstacleSamples labelled_;  // the samples with their class (1 or 2), for pictures
+  planners::ObstacleSamples labelled_;  // the samples with their class (1 or 2), for pictures
   IkSamples samples_;
   Labelling labelling_;
   std::optional<RiskFunction> risk_;

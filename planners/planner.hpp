@@ -17,8 +17,8 @@
 
 #include "cspace/configuration_space.hpp"
 #include "cspace/motion_validator.hpp"
-#include "cspace/obstacle_sampler.hpp"
-#include "cspace/scenario.hpp"
+#include "planners/obstacle_sampler.hpp"
+#include "cspace/scenario/scenario.hpp"
 #include "cspace/validity_checker.hpp"
 #include "planners/plan_result.hpp"
 #include "planners/termination.hpp"
@@ -37,7 +37,7 @@ struct PlanningContext {
 
 // What a planner learned, for pictures and inspection; null where it has none.
 struct PlannerView {
-  const cspace::ObstacleSamples* samples = nullptr;  // labelled samples (obstacle ids, or 1/2 for classes)
+  const planners::ObstacleSamples* samples = nullptr;  // labelled samples (obstacle ids, or 1/2 for classes)
   const RiskFunction* risk = nullptr;                // decision functions F_k
   const Roadmap* roadmap = nullptr;
 };

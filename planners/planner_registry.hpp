@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "cspace/parameters.hpp"
+#include "cspace/scenario/parameters.hpp"
 #include "planners/planner.hpp"
 
 namespace svmp::planners {

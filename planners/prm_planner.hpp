@@ -6,7 +6,7 @@
 // Parameters (scenario `planners.prm`): the fields of PrmOptions, same names.
 #include <optional>
 
-#include "cspace/parameters.hpp"
+#include "cspace/scenario/parameters.hpp"
 #include "planners/nearest_neighbors.hpp"
 #include "planners/planner.hpp"
 #include "planners/roadmap.hpp"

@@ -80,7 +80,7 @@ PlannerView SvmpPlanner::view() const { return {&samples_, risk(), &roadmap_}; }
 
 bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Termination& stop) {
   const auto t0 = Clock::now();
-  cspace::ObstacleSamplerOptions opt;
+  planners::ObstacleSamplerOptions opt;
   opt.step = options_.step;
   opt.samples_per_tree = options_.samples_per_tree;
   opt.include_self_collision = options_.sample_self_collision;
@@ -88,7 +88,7 @@ bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Te
   // validator can tell apart, coarse enough to cost a few bisection checks per boundary node.
   opt.refine_tolerance = context_.validator.resolution() / 4;
   opt.stop = stop.asFunction();
-  samples_ = cspace::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
+  samples_ = planners::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
   times.sampling_ms += msSince(t0);
   return !samples_.stopped;
 }

@@ -10,9 +10,9 @@
 // Parameters (scenario `planners.svmp`, `--set svmp.KEY=VALUE`): the fields of SvmpOptions, same names.
 #include <optional>
 
-#include "cspace/obstacle_sampler.hpp"
+#include "planners/obstacle_sampler.hpp"
 #include "planners/nearest_neighbors.hpp"
-#include "cspace/parameters.hpp"
+#include "cspace/scenario/parameters.hpp"
 #include "planners/planner.hpp"
 #include "planners/risk_function.hpp"
 #include "planners/roadmap.hpp"
@@ -63,7 +63,7 @@ class SvmpPlanner final : public Planner {
   bool findBoundaryMilestones(PhaseTimes& times, const Termination& stop = {});
   bool makeRoadmap(PhaseTimes& times, const Termination& stop = {});
 
-  const cspace::ObstacleSamples& samples() const { return samples_; }
+  const planners::ObstacleSamples& samples() const { return samples_; }
   const RiskFunction* risk() const { return risk_ ? &*risk_ : nullptr; }
   const Roadmap& roadmap() const { return roadmap_; }
   int supportVectors() const;
@@ -92,7 +92,7 @@ class SvmpPlanner final : public Planner {
   std::optional<Eigen::VectorXd> centreAlongNormal(int k, const Eigen::VectorXd& q) const;
 
   SvmpOptions options_;
-  cspace::ObstacleSamples samples_;
+  planners::ObstacleSamples samples_;
   std::optional<RiskFunction> risk_;
   Roadmap roadmap_;
   std::optional<NearestNeighbors> nn_;

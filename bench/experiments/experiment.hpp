@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bench/experiments/driver_options.hpp"
-#include "cspace/scenario.hpp"
+#include "cspace/scenario/scenario.hpp"
 #include "planners/plan_result.hpp"
 
 namespace svmp::experiments {

@@ -3,7 +3,7 @@
 // their collision status and clearance, and the witness path when the file gives one).
 #include <ostream>
 
-#include "cspace/scenario.hpp"
+#include "cspace/scenario/scenario.hpp"
 
 namespace svmp::experiments {
 

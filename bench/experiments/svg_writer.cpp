@@ -11,13 +11,14 @@
 
 #include "bench/experiments/atomic_file.hpp"
 #include "cspace/collision_checker.hpp"
+#include "planners/geometry.hpp"
 #include "robots/point_robot.hpp"
 
 namespace svmp::experiments {
 namespace {
 
-using Point = Eigen::Vector2d;
-using Polygon = std::vector<Point>;
+using Point = planners::Point2;
+using Polygon = planners::Polygon;
 
 constexpr const char* kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd",
                                     "#8c564b", "#e377c2", "#bcbd22", "#17becf"};
@@ -191,119 +192,19 @@ void drawCObstacles(Canvas& canvas, const cspace::Scenario& scenario, const Poin
   canvas.out() << "</g>\n";
 }
 
-// F_k = 0 by marching squares over a (kGrid + 1)^2 grid of nodes, as the "d" of one SVG path.
-std::string zeroLevelSet(const Canvas& canvas, const planners::RiskFunction& risk, int k,
-                         const Point& lo, const Point& hi) {
-  const int n = kGrid + 1;
-  const Point cell = (hi - lo) / kGrid;
-  std::vector<double> value(n * n);
+// F_k = 0 (planners/geometry.hpp) as the "d" of one SVG path.
+std::string zeroLevelSetPath(const Canvas& canvas, const planners::RiskFunction& risk, int k, const Point& lo,
+                             const Point& hi) {
   Eigen::VectorXd q(2);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      q << lo.x() + i * cell.x(), lo.y() + j * cell.y();
-      value[j * n + i] = risk.decision(k, q);
-    }
+  const auto segments = planners::zeroLevelSet(
+      [&](const Point& p) {
+        q = p;
+        return risk.decision(k, q);
+      },
+      lo, hi, kGrid);
   std::string d;
-  for (int j = 0; j < kGrid; ++j)
-    for (int i = 0; i < kGrid; ++i) {
-      // Corners counter-clockwise from bottom-left; edge e joins corner e and corner e + 1.
-      const int ci[4] = {i, i + 1, i + 1, i}, cj[4] = {j, j, j + 1, j + 1};
-      double v[4];
-      Point crossing[4];
-      int crossed[4], count = 0;
-      for (int c = 0; c < 4; ++c) v[c] = value[cj[c] * n + ci[c]];
-      for (int e = 0; e < 4; ++e) {
-        const int a = e, b = (e + 1) % 4;
-        if ((v[a] > 0) == (v[b] > 0)) continue;
-        const double t = v[a] / (v[a] - v[b]);
-        const Point pa = lo + Point(ci[a] * cell.x(), cj[a] * cell.y());
-        const Point pb = lo + Point(ci[b] * cell.x(), cj[b] * cell.y());
-        crossing[e] = pa + t * (pb - pa);
-        crossed[count++] = e;
-      }
-      const auto segment = [&](int e0, int e1) {
-        d.append("M").append(canvas.xy(crossing[e0])).append("L").append(canvas.xy(crossing[e1]));
-      };
-      if (count == 2) {
-        segment(crossed[0], crossed[1]);
-      } else if (count == 4) {  // saddle: the centre's sign decides which corners are cut off
-        if ((v[0] + v[1] + v[2] + v[3] > 0) == (v[0] > 0))
-          segment(0, 1), segment(2, 3);
-        else
-          segment(3, 0), segment(1, 2);
-      }
-    }
+  for (const auto& [a, b] : segments) d.append("M").append(canvas.xy(a)).append("L").append(canvas.xy(b));
   return d;
-}
-
-// Convex hull (Andrew's monotone chain), counter-clockwise.
-Polygon convexHull(Polygon points) {
-  std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  if (points.size() < 3) return points;
-  const auto cross = [](const Point& o, const Point& a, const Point& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  Polygon hull(2 * points.size());
-  size_t k = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k - 1);
-  return hull;
-}
-
-// Outline of a shape (at world pose `pose`) projected on the plane z = 0.
-Polygon projectedOutline(const robots::Shape& shape, const Eigen::Isometry3d& pose) {
-  Polygon points;
-  const Eigen::Vector3d& d = shape.dims;
-  const double length = shape.kind == robots::ShapeKind::kSphere ? 0 : d.y();
-  const auto circleAround = [&](const Point& centre, double r) {
-    for (int a = 0; a < kArcPoints; ++a) {
-      const double t = 2 * std::numbers::pi * a / kArcPoints;
-      points.push_back(centre + r * Point(std::cos(t), std::sin(t)));
-    }
-  };
-  switch (shape.kind) {
-    case robots::ShapeKind::kBox:
-      for (int c = 0; c < 8; ++c)
-        points.push_back(
-            (pose * Eigen::Vector3d((c & 1 ? 0.5 : -0.5) * d.x(), (c & 2 ? 0.5 : -0.5) * d.y(),
-                                    (c & 4 ? 0.5 : -0.5) * d.z()))
-                .head<2>());
-      break;
-    case robots::ShapeKind::kCylinder:
-      for (int a = 0; a < kArcPoints; ++a) {
-        const double t = 2 * std::numbers::pi * a / kArcPoints;
-        for (double z : {-0.5 * length, 0.5 * length})
-          points.push_back(
-              (pose * Eigen::Vector3d(d.x() * std::cos(t), d.x() * std::sin(t), z)).head<2>());
-      }
-      break;
-    case robots::ShapeKind::kSphere:  // a capsule of length 0
-    case robots::ShapeKind::kCapsule:
-      for (double z : {-0.5 * length, 0.5 * length})
-        circleAround((pose * Eigen::Vector3d(0, 0, z)).head<2>(), d.x());
-      break;
-  }
-  return convexHull(std::move(points));
-}
-
-// Outlines of every link shape of the robot at q.
-std::vector<Polygon> robotOutlines(const robots::Robot& robot, const Eigen::VectorXd& q) {
-  robots::Poses poses;
-  robot.linkPoses(q, poses);
-  std::vector<Polygon> outlines;
-  for (int link = 0; link < robot.numLinks(); ++link)
-    for (const robots::Shape& shape : robot.linkShapes(link))
-      outlines.push_back(projectedOutline(shape, poses[link] * shape.pose));
-  return outlines;
 }
 
 // The configuration at arc length s (weighted metric) along the path; cumulative[i] = length to
@@ -347,7 +248,7 @@ bool writeConfigurationSpaceSvg(const std::string& file, const SvgContent& conte
              << content.roadmap->numEdges() << " edges";
   }
   if (content.samples) {
-    const cspace::ObstacleSamples& samples = *content.samples;
+    const planners::ObstacleSamples& samples = *content.samples;
     for (int i = 0; i < samples.size(); ++i)
       canvas.circle(samples.points.col(i), 1.8,
                     std::string("fill=\"") + classColour(samples.labels[i]) + "\"");
@@ -366,7 +267,7 @@ bool writeConfigurationSpaceSvg(const std::string& file, const SvgContent& conte
                    << "\" stroke-width=\""
                    << num(1.2 + 2.0 * (classes - 1 - k) / std::max(classes - 1, 1))
                    << "\" stroke-linecap=\"round\" d=\""
-                   << zeroLevelSet(canvas, *content.risk, k, lo, hi) << "\"/>\n";
+                   << zeroLevelSetPath(canvas, *content.risk, k, lo, hi) << "\"/>\n";
     subtitle << "; lines: F_k = 0";
   }
   if (content.roadmap)
@@ -418,12 +319,12 @@ bool writeWorkspaceSvg(const std::string& file, const SvgContent& content, int s
   // Bounds: obstacles and what is drawn of the robot (point robots: their joint limits).
   std::vector<Polygon> obstacle_outlines;
   for (const cspace::Obstacle& o : scenario.environment->obstacles())
-    obstacle_outlines.push_back(projectedOutline(o.shape, o.shape.pose));
+    obstacle_outlines.push_back(planners::projectedOutline(o.shape, o.shape.pose, kArcPoints));
   Point lo = Point::Constant(1e300), hi = Point::Constant(-1e300);
   for (const Polygon& outline : obstacle_outlines) extend(lo, hi, outline);
   std::vector<std::vector<Polygon>> pose_outlines;
   for (const auto& [q, style] : poses) {
-    pose_outlines.push_back(robotOutlines(robot, q));
+    pose_outlines.push_back(planners::robotOutlines(robot, q, kArcPoints));
     for (const Polygon& outline : pose_outlines.back()) extend(lo, hi, outline);
   }
   extend(lo, hi, tip_trace);

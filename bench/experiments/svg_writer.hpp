@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "cspace/obstacle_sampler.hpp"
-#include "cspace/scenario.hpp"
+#include "planners/obstacle_sampler.hpp"
+#include "cspace/scenario/scenario.hpp"
 #include "planners/risk_function.hpp"
 #include "planners/roadmap.hpp"
 
@@ -21,7 +21,7 @@ namespace svmp::experiments {
 // What to draw; pointers other than scenario may be null.
 struct SvgContent {
   const cspace::Scenario* scenario = nullptr;  // robot, environment, queries
-  const cspace::ObstacleSamples* samples =
+  const planners::ObstacleSamples* samples =
       nullptr;                                   // SVMP's obstacle samples (labels = obstacle ids)
   const planners::RiskFunction* risk = nullptr;  // decision boundaries F_k = 0
   const planners::Roadmap* roadmap = nullptr;    // milestones + edges

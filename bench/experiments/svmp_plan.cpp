@@ -8,7 +8,7 @@
 #include "bench/experiments/driver_options.hpp"
 #include "bench/experiments/experiment.hpp"
 #include "bench/experiments/scenario_check.hpp"
-#include "cspace/scenario.hpp"
+#include "cspace/scenario/scenario.hpp"
 
 int main(int argc, char** argv) {
   using namespace svmp;

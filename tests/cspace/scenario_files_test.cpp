@@ -8,7 +8,7 @@
 
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
-#include "cspace/scenario.hpp"
+#include "cspace/scenario/scenario.hpp"
 
 namespace svmp::cspace {
 namespace {

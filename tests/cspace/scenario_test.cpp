@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "cspace/scenario.hpp"
+#include "cspace/scenario/scenario.hpp"
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "cspace/obstacle_sampler.hpp"
+#include "planners/obstacle_sampler.hpp"
 #include "test_world.hpp"
 
 namespace svmp::planners {
@@ -23,8 +23,8 @@ const char* kThreeObstacles =
     "resolution: 0.01\n"
     "metric_weights: [1.0, 2.0]\n";
 
-cspace::ObstacleSamplerOptions samplerOptions() {
-  cspace::ObstacleSamplerOptions o;
+planners::ObstacleSamplerOptions samplerOptions() {
+  planners::ObstacleSamplerOptions o;
   o.step = 0.04;
   o.samples_per_tree = 150;
   return o;
@@ -33,7 +33,7 @@ cspace::ObstacleSamplerOptions samplerOptions() {
 TEST(ObstacleSampler, SamplesHitTheirObstacleAndTreesAreFull) {
   auto w = makeWorld(kThreeObstacles);
   const auto opt = samplerOptions();
-  const auto s = cspace::sampleObstacles(w->checker, w->space, opt, 21, 1);
+  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 21, 1);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
   ASSERT_EQ(s.tree_sizes.size(), 3u);
   for (int size : s.tree_sizes) EXPECT_EQ(size, opt.samples_per_tree);
@@ -60,7 +60,7 @@ TEST(ObstacleSampler, SamplesHitTheirObstacleAndTreesAreFull) {
 TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
   auto w = makeWorld(kThreeObstacles);
   const auto opt = samplerOptions();
-  const auto s = cspace::sampleObstacles(w->checker, w->space, opt, 22, 1);
+  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 22, 1);
   const Eigen::VectorXd& scale = w->space.metricScale();
   int checked = 0;
   for (int i = 0; i < s.size(); ++i) {
@@ -96,7 +96,7 @@ TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
 
 TEST(ObstacleSampler, ScenarioRootIsTheFirstSampleOfItsTree) {
   auto w = makeWorld(kThreeObstacles);
-  const auto s = cspace::sampleObstacles(w->checker, w->space, samplerOptions(), 23, 2);
+  const auto s = planners::sampleObstacles(w->checker, w->space, samplerOptions(), 23, 2);
   int first = -1;
   for (int i = 0; i < s.size() && first < 0; ++i)
     if (s.labels[i] == 3) first = i;
@@ -108,7 +108,7 @@ TEST(ObstacleSampler, RootThatMissesItsObstacleIsReportedNotUsed) {
   std::string yaml = kThreeObstacles;
   yaml.replace(yaml.find("sample: [0.53, 0.82]"), 20, "sample: [0.53, 0.60]");
   auto w = makeWorld(yaml);
-  const auto s = cspace::sampleObstacles(w->checker, w->space, samplerOptions(), 24, 1);
+  const auto s = planners::sampleObstacles(w->checker, w->space, samplerOptions(), 24, 1);
   ASSERT_EQ(s.tree_sizes.size(), 3u);
   EXPECT_EQ(s.tree_sizes[2], 0);
   ASSERT_EQ(s.warnings.size(), 1u);
@@ -119,14 +119,14 @@ TEST(ObstacleSampler, RootThatMissesItsObstacleIsReportedNotUsed) {
 TEST(ObstacleSampler, SameSeedGivesSameSamplesWithOneAndTwoThreads) {
   auto w = makeWorld(kThreeObstacles);
   const auto opt = samplerOptions();
-  const auto one = cspace::sampleObstacles(w->checker, w->space, opt, 25, 1);
-  const auto two = cspace::sampleObstacles(w->checker, w->space, opt, 25, 2);
+  const auto one = planners::sampleObstacles(w->checker, w->space, opt, 25, 1);
+  const auto two = planners::sampleObstacles(w->checker, w->space, opt, 25, 2);
   ASSERT_EQ(one.size(), two.size());
   EXPECT_TRUE(one.points == two.points);
   EXPECT_EQ(one.labels, two.labels);
   EXPECT_EQ(one.boundary, two.boundary);
   EXPECT_EQ(one.tree_sizes, two.tree_sizes);
-  const auto other = cspace::sampleObstacles(w->checker, w->space, opt, 26, 1);
+  const auto other = planners::sampleObstacles(w->checker, w->space, opt, 26, 1);
   EXPECT_FALSE(other.points == one.points) << "the seed has no effect";
 }
 
@@ -134,10 +134,10 @@ TEST(ObstacleSampler, RejectsInvalidOptions) {
   auto w = makeWorld(kThreeObstacles);
   auto opt = samplerOptions();
   opt.step = 0;
-  EXPECT_THROW(cspace::sampleObstacles(w->checker, w->space, opt, 1, 1), std::invalid_argument);
+  EXPECT_THROW(planners::sampleObstacles(w->checker, w->space, opt, 1, 1), std::invalid_argument);
   opt = samplerOptions();
   opt.samples_per_tree = 0;
-  EXPECT_THROW(cspace::sampleObstacles(w->checker, w->space, opt, 1, 1), std::invalid_argument);
+  EXPECT_THROW(planners::sampleObstacles(w->checker, w->space, opt, 1, 1), std::invalid_argument);
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
-#include "cspace/scenario.hpp"
+#include "cspace/scenario/scenario.hpp"
 #include "planners/planner_registry.hpp"
 
 namespace svmp::planners::test {

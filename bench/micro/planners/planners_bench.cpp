@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "cspace/collision_checker.hpp"
-#include "cspace/obstacle_sampler.hpp"
-#include "cspace/scenario.hpp"
+#include "planners/obstacle_sampler.hpp"
+#include "cspace/scenario/scenario.hpp"
 #include "planners/nearest_neighbors.hpp"
 #include "planners/svmp_planner.hpp"
 
@@ -71,11 +71,11 @@ BENCHMARK(BM_MilestoneDescent)->ArgsProduct({{0, 1}, {1, 0}});
 
 void BM_ObstacleSampling(benchmark::State& state) {
   World& w = world(static_cast<int>(state.range(0)), true);
-  cspace::ObstacleSamplerOptions o;
+  planners::ObstacleSamplerOptions o;
   o.step = state.range(0) == 0 ? 0.3 : 0.15;
   o.samples_per_tree = 300;
   std::uint64_t seed = 1;
-  for (auto _ : state) benchmark::DoNotOptimize(cspace::sampleObstacles(w.checker, w.space, o, seed++, 1));
+  for (auto _ : state) benchmark::DoNotOptimize(planners::sampleObstacles(w.checker, w.space, o, seed++, 1));
   state.SetLabel(state.range(0) == 0 ? "fig3_7" : "fig4_4");
 }
 BENCHMARK(BM_ObstacleSampling)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);

@@ -1,4 +1,4 @@
-#include "cspace/scenario.hpp"
+#include "cspace/scenario/scenario.hpp"
 
 #include <yaml-cpp/yaml.h>
 

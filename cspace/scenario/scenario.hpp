@@ -9,7 +9,7 @@
 
 #include "cspace/configuration_space.hpp"
 #include "cspace/environment.hpp"
-#include "cspace/parameters.hpp"
+#include "cspace/scenario/parameters.hpp"
 #include "robots/robot.hpp"
 
 namespace svmp::cspace {

@@ -1,9 +1,15 @@
-#include "cspace/obstacle_sampler.hpp"
+#include "planners/obstacle_sampler.hpp"
 
 #include <limits>
 #include <sstream>
 
-namespace svmp::cspace {
+namespace svmp::planners {
+
+using cspace::ConfigurationSpace;
+using cspace::Obstacle;
+using cspace::Rng;
+using cspace::ValidityChecker;
+
 namespace {
 
 // Polled every this many expansions: often enough for a millisecond limit, rare enough to cost nothing.
@@ -135,7 +141,7 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
   for (const auto& o : checker.environment().obstacles())
     if (!o.is_virtual || options.include_virtual) targets.push_back(&o);
   Obstacle self_collision;
-  self_collision.id = kSelfCollisionHit;
+  self_collision.id = cspace::kSelfCollisionHit;
   self_collision.name = "self-collision";
   if (options.include_self_collision && checker.checksSelfCollision())
     targets.push_back(&self_collision);
@@ -162,4 +168,4 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
   return samples;
 }
 
-}  // namespace svmp::cspace
+}  // namespace svmp::planners

@@ -19,7 +19,7 @@
 #include "cspace/validity_checker.hpp"
 #include "cspace/configuration_space.hpp"
 
-namespace svmp::cspace {
+namespace svmp::planners {
 
 struct ObstacleSamplerOptions {
   double step = 0.1;             // expansion step in the weighted metric
@@ -50,8 +50,8 @@ struct ObstacleSamples {
   int numBoundary() const;
 };
 
-ObstacleSamples sampleObstacles(const ValidityChecker& checker, const ConfigurationSpace& space,
+ObstacleSamples sampleObstacles(const cspace::ValidityChecker& checker, const cspace::ConfigurationSpace& space,
                                 const ObstacleSamplerOptions& options, std::uint64_t seed,
                                 int threads);
 
-}  // namespace svmp::cspace
+}  // namespace svmp::planners

@@ -1,4 +1,4 @@
-#include "cspace/parameters.hpp"
+#include "cspace/scenario/parameters.hpp"
 
 #include <cmath>
 #include <cstdlib>
