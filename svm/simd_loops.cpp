@@ -65,39 +65,10 @@ SVMP_INLINE typename V<L>::D iota(double start) {
   return v;
 }
 
-// Same operations as svmp::svm::expNonPositive, lane-wise. kFloat: the result is stored as float
-// (kernel cache), so the Taylor series stops at degree 8 (truncation error < 3e-10 relative,
-// far below float rounding, 6e-8); otherwise degree 12 (< 2e-16).
+// svm/fast_exp.hpp lane-wise. kFloat: the result is stored as float (kernel cache), so degree 8.
 template <int L, bool kFloat = false>
 SVMP_INLINE typename V<L>::D vexp(typename V<L>::D x) {
-  using D = typename V<L>::D;
-  using I = typename V<L>::I;
-  const D lo = splat<L>(-700.0);
-  x = x < lo ? lo : x;
-  const D shift = splat<L>(6755399441055744.0);
-  const D t = x * splat<L>(1.4426950408889634) + shift;
-  const D k = t - shift;
-  const D r = (x - k * splat<L>(6.93145751953125e-1)) - k * splat<L>(1.42860682030941723212e-6);
-  D p;
-  if constexpr (kFloat) {
-    p = splat<L>(1.0 / 40320.0);
-  } else {
-    p = splat<L>(1.0 / 479001600.0);
-    p = p * r + splat<L>(1.0 / 39916800.0);
-    p = p * r + splat<L>(1.0 / 3628800.0);
-    p = p * r + splat<L>(1.0 / 362880.0);
-    p = p * r + splat<L>(1.0 / 40320.0);
-  }
-  p = p * r + splat<L>(1.0 / 5040.0);
-  p = p * r + splat<L>(1.0 / 720.0);
-  p = p * r + splat<L>(1.0 / 120.0);
-  p = p * r + splat<L>(1.0 / 24.0);
-  p = p * r + splat<L>(1.0 / 6.0);
-  p = p * r + splat<L>(0.5);
-  p = p * r + splat<L>(1.0);
-  p = p * r + splat<L>(1.0);
-  const I bits = (((I)t - 0x4338000000000000LL) + 1023) << 52;
-  return p * (D)bits;
+  return expNonPositiveOf<kFloat ? 8 : 12, typename V<L>::D, typename V<L>::I>(x);
 }
 
 // Lane winner: largest value, smallest index on ties (deterministic for any L).
