@@ -6,7 +6,6 @@
 #include <sstream>
 
 #include "planners/planner_registry.hpp"
-#include "svm/smo_solver.hpp"
 
 namespace svmp::planners {
 
@@ -179,13 +178,10 @@ void LocalPlanner::answer(const cspace::Query& query, std::uint64_t seed, const 
     C[i] = options_.C * (samples_.regions[i] == kBoundaryRegion
                              ? 1.0
                              : context_.checker.environment().byId(samples_.regions[i]).weight);
-  const Eigen::MatrixXd scaled = context_.space.metricScale().asDiagonal() * samples_.points;
   svm::SolverOptions solver;
   solver.eps = options_.eps;
-  const svm::Kernel kernel = svm::Kernel::rbfFromSigma(options_.sigma);
-  const svm::SolverResult solution = svm::solveBinary(scaled, labelling_.y, C, kernel, solver);
-  risk_.emplace(std::vector<svm::BinaryModel>{svm::BinaryModel::fromSolution(scaled, labelling_.y, solution, kernel)},
-                std::vector<int>{1}, context_.space.metricScale());
+  risk_.emplace(RiskFunction::trainBinary(samples_.points, labelling_.y, C, options_.sigma, solver,
+                                          context_.space.metricScale(), true));
   result.support_vectors = risk_->model(0).numSupportVectors();
   result.times.training_ms += msSince(t0);
   t0 = Clock::now();

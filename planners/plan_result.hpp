@@ -1,5 +1,5 @@
 #pragma once
-// What every planner returns (DESIGN.md "Counters and results"): a status, the path and named counters.
+// What every planner returns (docs/architecture.md, "Results and counters"): a status, the path and named counters.
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdint>

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "svm/one_vs_rest.hpp"
+
 namespace svmp::planners {
 namespace {
 
@@ -33,6 +35,25 @@ RiskFunction::RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int
   const bool rbf = models_.front().kernel().type == svm::KernelType::kRbf;
   if (truncated && rbf)
     for (const auto& m : models_) truncated_.emplace_back(m);
+}
+
+RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations, const std::vector<int>& labels,
+                                          double sigma, double C, const std::map<int, double>& class_weight,
+                                          const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
+                                          bool truncated, int threads) {
+  const Eigen::MatrixXd scaled = scale.asDiagonal() * configurations;
+  svm::OneVsRestModel ovr = svm::trainOneVsRest(scaled, labels, svm::Kernel::rbfFromSigma(sigma), C, class_weight,
+                                                solver, threads);
+  return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated);
+}
+
+RiskFunction RiskFunction::trainBinary(const Eigen::MatrixXd& configurations, const Eigen::VectorXd& y,
+                                       const Eigen::VectorXd& C, double sigma, const svm::SolverOptions& solver,
+                                       const Eigen::VectorXd& scale, bool truncated) {
+  const Eigen::MatrixXd scaled = scale.asDiagonal() * configurations;
+  const svm::Kernel kernel = svm::Kernel::rbfFromSigma(sigma);
+  const svm::SolverResult solution = svm::solveBinary(scaled, y, C, kernel, solver);
+  return RiskFunction({svm::BinaryModel::fromSolution(scaled, y, solution, kernel)}, {1}, scale, truncated);
 }
 
 int RiskFunction::classIndex(int label) const {

@@ -8,11 +8,13 @@
 // evaluated through the exp(-5)-truncated sum (ch. 4.3.1); other kernels use the full sum.
 // Thread safety: const methods may be called concurrently.
 #include <Eigen/Core>
+#include <map>
 #include <variant>
 #include <vector>
 
 #include "cspace/configuration_space.hpp"
 #include "svm/model.hpp"
+#include "svm/smo_solver.hpp"
 #include "svm/truncated_evaluator.hpp"
 
 namespace svmp::planners {
@@ -45,6 +47,17 @@ class RiskFunction {
  public:
   RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int> classes, Eigen::VectorXd scale,
                bool truncated = true);
+
+  // Training on configurations (one per column), scaled here by `scale` = sqrt(w) so the RBF of width
+  // sigma measures the weighted metric: one-versus-rest over obstacle labels (SVMP, thesis ch. 3.2;
+  // C per class = C * class_weight) and one binary model with per-sample C (the local planner, ch. 2).
+  static RiskFunction trainOneVsRest(const Eigen::MatrixXd& configurations, const std::vector<int>& labels,
+                                     double sigma, double C, const std::map<int, double>& class_weight,
+                                     const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
+                                     bool truncated, int threads);
+  static RiskFunction trainBinary(const Eigen::MatrixXd& configurations, const Eigen::VectorXd& y,
+                                  const Eigen::VectorXd& C, double sigma, const svm::SolverOptions& solver,
+                                  const Eigen::VectorXd& scale, bool truncated);
 
   int numClasses() const { return static_cast<int>(models_.size()); }
   const std::vector<int>& classes() const { return classes_; }

@@ -8,7 +8,6 @@
 
 #include "planners/planner_registry.hpp"
 #include "planners/roadmap_builder.hpp"
-#include "svm/one_vs_rest.hpp"
 
 namespace svmp::planners {
 
@@ -107,15 +106,12 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
     return "svmp: one-versus-rest needs samples of at least two obstacles, got " + have +
            (samples_.warnings.empty() ? "" : " (" + samples_.warnings.front() + ")");
   }
-  const Eigen::MatrixXd scaled = context_.space.metricScale().asDiagonal() * samples_.points;
   svm::SolverOptions solver;
   solver.eps = options_.eps;
   solver.cache_mb = options_.cache_mb;
-  svm::OneVsRestModel ovr = svm::trainOneVsRest(scaled, samples_.labels,
-                                                svm::Kernel::rbfFromSigma(options_.sigma), options_.C,
-                                                weights, solver, context_.threads);
-  risk_.emplace(std::move(ovr.models), std::move(ovr.classes), context_.space.metricScale(),
-                options_.truncated);
+  risk_.emplace(RiskFunction::trainOneVsRest(samples_.points, samples_.labels, options_.sigma, options_.C, weights,
+                                             solver, context_.space.metricScale(), options_.truncated,
+                                             context_.threads));
   times.training_ms += msSince(t0);
   return "";
 }
