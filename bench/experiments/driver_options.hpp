@@ -1,5 +1,5 @@
 #pragma once
-// Command line of svmp-plan (DESIGN.md, "The experiment driver").
+// Command line of svmp-plan (docs/architecture.md, "The driver").
 #include <string>
 #include <utility>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // Runs each planner N times on one scenario (seeds S, S+1, ...), measures every returned path the same
 // way (length, minimum clearance and strict correctness at a quarter of the checking resolution), and
-// reports the thesis-style table and the JSON of DESIGN.md.
+// reports the thesis-style table and the JSON described in docs/architecture.md.
 #include <ostream>
 #include <string>
 #include <vector>

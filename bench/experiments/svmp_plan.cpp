@@ -1,4 +1,4 @@
-// svmp-plan: the experiment driver (DESIGN.md). Loads a scenario, runs each planner N times with seeds
+// svmp-plan: the experiment driver (docs/architecture.md, "The driver"). Loads a scenario, runs each planner N times with seeds
 // S, S+1, ..., prints the thesis-style table and writes JSON and pictures. Bad input: one clear error,
 // exit status 2.
 #include <filesystem>
