@@ -39,6 +39,8 @@ class MotionValidator {
   // The sampling resolution in the weighted metric of eq. 4.3.
   virtual double resolution() const = 0;
   std::uint64_t calls() const { return calls_.load(std::memory_order_relaxed); }
+  // Distance queries made for this validator (certified validation); 0 for sampled validation.
+  virtual std::uint64_t distanceQueries() const { return 0; }
 
  protected:
   void countCall() const { calls_.fetch_add(1, std::memory_order_relaxed); }

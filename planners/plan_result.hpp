@@ -34,6 +34,8 @@ struct PlanResult {
   PlanStatus status = PlanStatus::kFailed;  // of Planner::build(): kSolved means ready for queries
   std::string message;                // why, when not solved
   std::vector<Eigen::VectorXd> path;  // start ... goal, straight segments between
+  bool certified = false;             // every segment proven free by the context's certifier
+  std::uint64_t certified_segments = 0;  // certifier calls (segments proven or disproved)
   std::uint64_t collision_checks = 0;
   std::uint64_t local_planner_calls = 0;
   std::uint64_t distance_queries = 0;  // FCL distance queries (certification)

@@ -13,16 +13,19 @@ class CounterScope {
       : context_(c),
         checks_(c.checker.collisionChecks()),
         calls_(c.validator.calls()),
-        distances_(c.checker.distanceQueries()) {}
+        certifier_calls_(c.certifier ? c.certifier->calls() : 0),
+        distances_(c.certifier ? c.certifier->distanceQueries() : 0) {}
   void finish(PlanResult& result) const {
     result.collision_checks += context_.checker.collisionChecks() - checks_;
     result.local_planner_calls += context_.validator.calls() - calls_;
-    result.distance_queries += context_.checker.distanceQueries() - distances_;
+    if (!context_.certifier) return;
+    result.certified_segments += context_.certifier->calls() - certifier_calls_;
+    result.distance_queries += context_.certifier->distanceQueries() - distances_;
   }
 
  private:
   const PlanningContext& context_;
-  std::uint64_t checks_, calls_, distances_;
+  std::uint64_t checks_, calls_, certifier_calls_, distances_;
 };
 
 }  // namespace
@@ -69,6 +72,18 @@ bool checkEndpoints(const PlanningContext& context, const cspace::Query& query, 
   return true;
 }
 
+void Planner::certify(PlanResult& result) const {
+  if (!context_.certifier || !result.solved() || result.certified) return;
+  for (size_t i = 0; i + 1 < result.path.size(); ++i) {
+    if (context_.certifier->isValid(result.path[i], result.path[i + 1])) continue;
+    result.status = PlanStatus::kFailed;
+    result.message = "segment " + std::to_string(i) + " of the path is not proven collision-free";
+    result.path.clear();
+    return;
+  }
+  result.certified = true;
+}
+
 PlanResult Planner::build(std::uint64_t seed, const Termination& stop) {
   clear();
   const CounterScope scope(context_);
@@ -84,7 +99,10 @@ PlanResult Planner::query(const cspace::Query& q, std::uint64_t seed, const Term
   clearQuery();
   const CounterScope scope(context_);
   PlanResult result;
-  if (checkEndpoints(context_, q, result)) answer(q, seed, stop, result);
+  if (checkEndpoints(context_, q, result)) {
+    answer(q, seed, stop, result);
+    certify(result);
+  }
   scope.finish(result);
   return result;
 }
@@ -99,6 +117,7 @@ PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Term
     if (built_) {
       result.status = PlanStatus::kFailed;
       answer(q, seed, stop, result);
+      certify(result);
     }
   }
   scope.finish(result);

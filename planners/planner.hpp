@@ -33,6 +33,10 @@ struct PlanningContext {
   const cspace::ValidityChecker& checker;
   const cspace::MotionValidator& validator;
   int threads = 1;
+  // Proves the segments of returned paths collision-free (cspace/certified_motion_validator.hpp). When
+  // set, a planner reports kSolved only for a path whose every segment it proved: roadmap planners
+  // drop a disproved edge and search again, the others fail the query. Null: no certification.
+  const cspace::MotionValidator* certifier = nullptr;
 };
 
 // What a planner learned, for pictures and inspection; null where it has none.
@@ -74,6 +78,9 @@ class Planner {
                       PlanResult& result) = 0;
   // Called after clear() by subclasses.
   void forgetBuild() { built_ = false; }
+  // With a certifier: proves each segment of a solved, not yet certified result; the first that fails
+  // turns the result into kFailed (message names it, path cleared).
+  void certify(PlanResult& result) const;
 
   PlanningContext context_;
 

@@ -74,9 +74,10 @@ void PrmPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanR
 void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termination&, PlanResult& result) {
   const auto t0 = Clock::now();
   Roadmap with_query = roadmap_;
-  QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k);
+  QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_);
   result.times.query_ms += msSince(t0);
   result.path = std::move(outcome.path);
+  result.certified = outcome.certified;
   result.status = result.path.empty() ? PlanStatus::kFailed : PlanStatus::kSolved;
   if (!result.solved()) result.message = "start and goal are not connected by the roadmap";
   result.milestones = roadmap_.numNodes();

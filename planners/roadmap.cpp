@@ -6,7 +6,6 @@
 
 namespace svmp::planners {
 
-
 void UnionFind::resize(int n) {
   const int old = size();
   parent_.resize(n);
@@ -44,6 +43,35 @@ void Roadmap::addEdge(int a, int b, double cost) {
   adjacency_[b].push_back({a, cost});
   components_.unite(a, b);
   ++num_edges_;
+}
+
+void Roadmap::removeEdge(int a, int b) {
+  auto drop = [this](int from, int to) {
+    auto& list = adjacency_[from];
+    const auto it = std::find_if(list.begin(), list.end(), [to](const Edge& e) { return e.to == to; });
+    if (it == list.end()) return false;
+    list.erase(it);
+    return true;
+  };
+  if (!drop(a, b)) return;
+  drop(b, a);
+  --num_edges_;
+  components_ = UnionFind(numNodes());
+  for (int u = 0; u < numNodes(); ++u)
+    for (const Edge& e : adjacency_[u])
+      if (u < e.to) components_.unite(u, e.to);
+}
+
+void Roadmap::markCertified(int a, int b) {
+  for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
+    for (Edge& e : adjacency_[from])
+      if (e.to == to) e.certified = true;
+}
+
+bool Roadmap::isCertified(int a, int b) const {
+  for (const Edge& e : adjacency_[a])
+    if (e.to == b) return e.certified;
+  return false;
 }
 
 void Roadmap::clear() {

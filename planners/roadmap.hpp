@@ -1,6 +1,9 @@
 #pragma once
 // The roadmap shared by SVMP and the classical PRM: milestones, weighted undirected edges, union-find
 // over connected components, and A* search (Hart, Nilsson, Raphael 1968) with the metric as heuristic.
+// Edges found in collision by certification are removed (lazy repair, as LazyPRM: Bohlin and Kavraki
+// 2000), and the edges proven free are marked so that later queries do not prove them again.
+// Thread safety: none; one planner owns it.
 #include <Eigen/Core>
 #include <functional>
 #include <vector>
@@ -24,6 +27,7 @@ class UnionFind {
 struct Edge {
   int to;
   double cost;
+  bool certified = false;  // proven collision-free by the certified validator (lazy, on first use)
 };
 
 class Roadmap {
@@ -31,6 +35,10 @@ class Roadmap {
   // Adds a milestone; returns its index.
   int addNode(const Eigen::VectorXd& q);
   void addEdge(int a, int b, double cost);
+  // Removes the edge a-b (both directions) and recomputes the components; no-op when absent.
+  void removeEdge(int a, int b);
+  void markCertified(int a, int b);
+  bool isCertified(int a, int b) const;
   void clear();
 
   int numNodes() const { return static_cast<int>(nodes_.size()); }

@@ -36,7 +36,7 @@ bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const Plann
 }
 
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                          const cspace::Query& query, int k) {
+                          const cspace::Query& query, int k, Roadmap* milestones) {
   QueryOutcome out;
   out.start_node = roadmap.addNode(query.start);
   out.goal_node = roadmap.addNode(query.goal);
@@ -45,12 +45,29 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   // Start and goal are not in the tree, so no slot of the search goes to the node itself.
   for (int endpoint : {out.start_node, out.goal_node})
     connectToNearest(roadmap, nn, context, endpoint, k, std::min(nn.size(), 3 * k));
-  if (!roadmap.connected(out.start_node, out.goal_node)) return out;
   const Eigen::VectorXd goal = query.goal;
-  const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {
-    return context.space.distance(roadmap.node(v), goal);
-  });
-  for (int v : nodes) out.path.push_back(roadmap.node(v));
+  const int shared = milestones ? milestones->numNodes() : 0;
+  while (roadmap.connected(out.start_node, out.goal_node)) {
+    const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {
+      return context.space.distance(roadmap.node(v), goal);
+    });
+    int disproved = -1;
+    for (size_t i = 0; context.certifier && i + 1 < nodes.size() && disproved < 0; ++i) {
+      const int u = nodes[i], v = nodes[i + 1];
+      if (roadmap.isCertified(u, v)) continue;
+      const bool free = context.certifier->isValid(roadmap.node(u), roadmap.node(v));
+      free ? roadmap.markCertified(u, v) : roadmap.removeEdge(u, v);
+      if (u < shared && v < shared) free ? milestones->markCertified(u, v) : milestones->removeEdge(u, v);
+      if (!free) disproved = static_cast<int>(i);
+    }
+    if (disproved >= 0) {
+      ++out.disproved_edges;
+      continue;
+    }
+    for (int v : nodes) out.path.push_back(roadmap.node(v));
+    out.certified = context.certifier != nullptr;
+    break;
+  }
   return out;
 }
 

@@ -17,12 +17,17 @@ bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const Plann
 struct QueryOutcome {
   std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected
   int start_node = -1, goal_node = -1;  // their indices in the query roadmap
+  bool certified = false;             // every edge of the path proven free by context.certifier
+  int disproved_edges = 0;            // edges certification removed (lazy repair)
 };
 
 // Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean),
-// connects each to its k nearest milestones and searches the path.
+// connects each to its k nearest milestones and searches the path. With context.certifier, each edge
+// of the path found is proven free (once: proven edges are marked); an edge that is not is removed and
+// the search runs again, until a path is proven or start and goal are disconnected. `milestones`, the
+// roadmap `roadmap` was copied from, gets the same marks and removals for edges between its nodes.
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                          const cspace::Query& query, int k);
+                          const cspace::Query& query, int k, Roadmap* milestones = nullptr);
 
 double pathLength(const std::vector<Eigen::VectorXd>& path, const cspace::ConfigurationSpace& space);
 

@@ -331,9 +331,10 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   cspace::Rng rng(seed ^ 0xA5A5A5A5ULL);
   for (int round = 0;; ++round) {
     Roadmap with_query = roadmap_;
-    QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k);
+    QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_);
     if (!outcome.path.empty()) {
       result.path = std::move(outcome.path);
+      result.certified = outcome.certified;
       result.status = PlanStatus::kSolved;
       break;
     }
