@@ -8,6 +8,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 #include <unordered_map>
@@ -217,6 +218,51 @@ double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) c
         fcl::DistanceResultd result;
         const double d = fcl::distance(part.get(), ws.obstacles[o.id - 1].get(), request, result);
         best = std::min(best, std::max(0.0, d));
+      }
+  return best;
+}
+
+namespace {
+
+// Distance between two placed objects, 0 when they touch or overlap. Overlapping AABBs are tested with
+// collide() first: GJK distance is not trusted to see one body inside another.
+double objectDistance(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b) {
+  if (a->getAABB().overlap(b->getAABB())) {
+    fcl::CollisionRequestd request;
+    fcl::CollisionResultd result;
+    if (fcl::collide(a, b, request, result) > 0) return 0;
+  }
+  fcl::DistanceRequestd request;
+  fcl::DistanceResultd result;
+  const double d = fcl::distance(a, b, request, result);
+  return d > 0 && std::isfinite(d) ? d : 0;
+}
+
+}  // namespace
+
+double CollisionChecker::freeDistance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  robot_->checkConfiguration(q, "free distance");
+  distances_.fetch_add(1, std::memory_order_relaxed);
+  if (!robot_->withinLimits(q)) return 0;
+  Workspace& ws = workspace();
+  placeRobot(ws, q);
+  double best = std::numeric_limits<double>::infinity();
+  for (auto& link : ws.links)
+    for (auto& part : link)
+      for (const auto& o : env_->obstacles()) {
+        if (o.is_virtual) continue;
+        auto* obstacle = ws.obstacles[o.id - 1].get();
+        // The AABBs' distance bounds the shapes' from below: farther than the best so far, skip.
+        if (part->getAABB().distance(obstacle->getAABB()) >= best) continue;
+        best = std::min(best, objectDistance(part.get(), obstacle));
+        if (best == 0) return 0;
+      }
+  for (const auto& [a, b] : self_pairs_)
+    for (auto& pa : ws.links[a])
+      for (auto& pb : ws.links[b]) {
+        if (pa->getAABB().distance(pb->getAABB()) >= best) continue;
+        best = std::min(best, objectDistance(pa.get(), pb.get()));
+        if (best == 0) return 0;
       }
   return best;
 }

@@ -71,10 +71,4 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   return out;
 }
 
-double pathLength(const std::vector<Eigen::VectorXd>& path, const cspace::ConfigurationSpace& space) {
-  double length = 0;
-  for (size_t i = 1; i < path.size(); ++i) length += space.distance(path[i - 1], path[i]);
-  return length;
-}
-
 }  // namespace svmp::planners

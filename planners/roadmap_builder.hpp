@@ -29,6 +29,4 @@ struct QueryOutcome {
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
                           const cspace::Query& query, int k, Roadmap* milestones = nullptr);
 
-double pathLength(const std::vector<Eigen::VectorXd>& path, const cspace::ConfigurationSpace& space);
-
 }  // namespace svmp::planners

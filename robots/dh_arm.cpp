@@ -62,6 +62,10 @@ DhArm::DhArm(DhArmSpec spec)
     shape.pose = to_flange * shape.pose;
     link_shapes_.back().push_back(shape);
   }
+  // Row k moves frame k's origin from frame k - 1's by a along x and d along the rotated z.
+  std::vector<double> offsets(n, 0.0);
+  for (size_t k = 1; k < n; ++k) offsets[k] = std::abs(spec_.rows[k].a) + std::abs(spec_.rows[k].d);
+  setChainReach(offsets);
   // Frame 1's origin never moves; frame k's origin is new when row k translates.
   for (size_t k = 1; k < n; ++k)
     if (spec_.rows[k].a != 0 || spec_.rows[k].d != 0) moving_origins_.push_back(static_cast<int>(k));

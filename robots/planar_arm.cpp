@@ -29,6 +29,9 @@ PlanarArm::PlanarArm(std::vector<double> lengths, std::vector<double> widths,
     link_shapes_.push_back(
         {Shape::box(Eigen::Vector3d(lengths_[i], widths_[i], widths_[i]), centre)});
   }
+  std::vector<double> offsets(lengths_.size(), 0.0);  // joint k sits at the end of link k - 1
+  for (size_t k = 1; k < lengths_.size(); ++k) offsets[k] = lengths_[k - 1];
+  setChainReach(offsets);
 }
 
 void PlanarArm::linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const {

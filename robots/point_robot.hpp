@@ -12,6 +12,11 @@ class PointRobot final : public Robot {
   void linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const override;
   void controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Matrix3Xd& points) const override;
   int numControlPoints() const override { return 1; }
+  // Exact: the robot translates by b - a.
+  double displacementBound(const Eigen::Ref<const Eigen::VectorXd>& a,
+                           const Eigen::Ref<const Eigen::VectorXd>& b) const override {
+    return (b - a).norm();
+  }
 
  private:
   double radius_;

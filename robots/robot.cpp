@@ -1,5 +1,6 @@
 #include "robots/robot.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -32,6 +33,30 @@ std::vector<std::pair<int, int>> Robot::nonAdjacentLinkPairs() const {
   for (size_t a = 0; a < solid.size(); ++a)
     for (size_t b = a + 2; b < solid.size(); ++b) pairs.emplace_back(solid[a], solid[b]);
   return pairs;
+}
+
+double Robot::displacementBound(const Eigen::Ref<const Eigen::VectorXd>& a,
+                                const Eigen::Ref<const Eigen::VectorXd>& b) const {
+  if (joint_reach_.size() != dof()) throw std::logic_error(name_ + ": no displacement bound set");
+  return joint_reach_.dot((b - a).cwiseAbs());
+}
+
+void Robot::setChainReach(const std::vector<double>& origin_offset) {
+  const int n = numLinks();
+  if (static_cast<int>(origin_offset.size()) != n || n != dof())
+    throw std::logic_error(name_ + ": one origin offset per link and joint");
+  std::vector<double> link_reach(n, 0.0);
+  for (int k = 0; k < n; ++k)
+    for (const Shape& s : link_shapes_[k]) link_reach[k] = std::max(link_reach[k], s.reach());
+  joint_reach_.resize(n);
+  for (int j = 0; j < n; ++j) {
+    double along = 0, best = 0;
+    for (int k = j; k < n; ++k) {
+      if (k > j) along += origin_offset[k];
+      best = std::max(best, along + link_reach[k]);
+    }
+    joint_reach_[j] = best;
+  }
 }
 
 void Robot::checkConfiguration(const Eigen::Ref<const Eigen::VectorXd>& q, const char* where) const {

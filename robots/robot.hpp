@@ -41,15 +41,28 @@ class Robot {
                              Eigen::Matrix3Xd& points) const = 0;
   virtual int numControlPoints() const = 0;
 
+  // An upper bound on how far any point of any link shape moves while q goes straight from a to b
+  // (certified motion validation, Schwarzer, Saha and Latombe 2005): sum_j reach_j |b_j - a_j| for a
+  // revolute chain, reach_j bounding the distance from joint j's axis to every point it moves.
+  virtual double displacementBound(const Eigen::Ref<const Eigen::VectorXd>& a,
+                                   const Eigen::Ref<const Eigen::VectorXd>& b) const;
+  const Eigen::VectorXd& jointReach() const { return joint_reach_; }
+
   // Throws std::invalid_argument naming the problem when q has the wrong size or is not finite.
   void checkConfiguration(const Eigen::Ref<const Eigen::VectorXd>& q, const char* where) const;
 
  protected:
   Robot(std::string name, Eigen::VectorXd lower, Eigen::VectorXd upper, int workspace_dim);
+  // For a serial chain whose joint j turns link frame j (and everything after it) about an axis through
+  // frame j's origin: origin_offset[k] is the constant distance between the origins of frames k - 1
+  // and k (k >= 1). Then reach_j = max over k >= j of (sum of offsets j+1..k + the reach of link k's
+  // shapes from frame k's origin). Call after the link shapes are set.
+  void setChainReach(const std::vector<double>& origin_offset);
   std::string name_;
   Eigen::VectorXd lower_, upper_;
   int workspace_dim_;
   std::vector<std::vector<Shape>> link_shapes_;
+  Eigen::VectorXd joint_reach_;
 };
 
 }  // namespace svmp::robots

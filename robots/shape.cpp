@@ -35,6 +35,17 @@ Shape Shape::capsuleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b, 
   return capsule(radius, length, pose);
 }
 
+double Shape::reach() const {
+  double extent = 0;  // from the shape's own centre
+  switch (kind) {
+    case ShapeKind::kBox: extent = 0.5 * dims.norm(); break;
+    case ShapeKind::kSphere: extent = dims.x(); break;
+    case ShapeKind::kCylinder: extent = std::hypot(dims.x(), 0.5 * dims.y()); break;
+    case ShapeKind::kCapsule: extent = dims.x() + 0.5 * dims.y(); break;
+  }
+  return pose.translation().norm() + extent;
+}
+
 const char* shapeKindName(ShapeKind kind) {
   switch (kind) {
     case ShapeKind::kBox: return "box";

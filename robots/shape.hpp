@@ -28,6 +28,8 @@ struct Shape {
   std::string validate() const;
   // True when point p (frame coordinates) lies inside or on the shape.
   bool contains(const Eigen::Vector3d& p) const;
+  // The largest distance from the origin of the frame the shape is attached to, to any of its points.
+  double reach() const;
 };
 
 const char* shapeKindName(ShapeKind kind);

@@ -1,5 +1,6 @@
 #include "bench/experiments/driver_options.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
@@ -29,12 +30,15 @@ double parseDouble(const std::string& flag, const std::string& value, double min
 
 const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
-         "                 [--json FILE] [--svg DIR] [--set PLANNER.KEY=VALUE ...] [--time-limit SEC]\n"
-         "                 [--check]\n"
+         "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify]\n"
+         "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--check]\n"
          "  --planners  comma-separated: svmp, prm, local, ompl-prm, ompl-lazyprm, ompl-rrtconnect\n"
          "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
          "  --time-limit  seconds per run; a planner that reaches it reports status timeout\n"
-         "  --check     print the scenario's summary and the status of start and goal, then exit\n";
+         "  --paths     JSON of every run's certified path (waypoints); --path-dir: one OMPL matrix\n"
+         "              text file per solved run (one configuration a line)\n"
+         "  --simplify  shortcut and reduce every solved path, each new segment certified\n"
+         "  --check     print the scenario's summary, validate planners and --set, verify the witness\n";
 }
 
 DriverOptions parseDriverOptions(int argc, const char* const* argv) {
@@ -58,6 +62,9 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     else if (flag == "--time-limit") o.time_limit = parseDouble(flag, value(), 1e-6, 1e7);
     else if (flag == "--json") o.json_path = value();
     else if (flag == "--svg") o.svg_dir = value();
+    else if (flag == "--paths") o.paths_json = value();
+    else if (flag == "--path-dir") o.paths_dir = value();
+    else if (flag == "--simplify") o.simplify = true;
     else if (flag == "--set") {
       const std::string kv = value();
       const size_t eq = kv.find('='), dot = kv.find('.');
@@ -69,6 +76,10 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     else throw std::invalid_argument("unknown flag '" + flag + "'");
   }
   if (!o.help && o.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
+  for (const auto& [flag, path] : {std::pair{"--json", &o.json_path}, std::pair{"--paths", &o.paths_json},
+                                   std::pair{"--svg", &o.svg_dir}, std::pair{"--path-dir", &o.paths_dir}})
+    if (path->empty() && std::find(argv, argv + argc, std::string(flag)) != argv + argc)
+      throw std::invalid_argument(std::string("flag ") + flag + ": empty path");
   return o;
 }
 

@@ -15,6 +15,9 @@ struct DriverOptions {
   double time_limit = 0;  // seconds per run (build and queries); 0: none
   std::string json_path;
   std::string svg_dir;
+  std::string paths_json;  // --paths: every run's certified waypoints
+  std::string paths_dir;   // --path-dir: one OMPL matrix text file per solved run
+  bool simplify = false;   // --simplify: shortcut and reduce every solved path (certified)
   std::vector<std::pair<std::string, std::string>> overrides;  // ("svmp.sigma", "0.3")
   bool check = false;
   bool help = false;

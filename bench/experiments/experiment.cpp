@@ -10,9 +10,12 @@
 #include <sstream>
 
 #include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/output_text.hpp"
 #include "bench/experiments/svg_writer.hpp"
+#include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
+#include "planners/path_simplifier.hpp"
 #include "planners/planner_registry.hpp"
 
 namespace svmp::experiments {
@@ -63,29 +66,57 @@ void measurePath(const cspace::Scenario& scenario, const cspace::ConfigurationSp
   const auto& path = record.result.path;
   if (path.empty()) return;
   const double step = scenario.resolution / 4;
-  record.strict_correct = true;
-  record.min_clearance = std::numeric_limits<double>::infinity();
+  record.path_length = planners::pathLength(path, space);
+  record.smoothness = planners::smoothness(path, space);
+  record.min_clearance = checker.clearance(path.front());
   Eigen::VectorXd q(space.dim());
-  auto visit = [&](const Eigen::VectorXd& c) {
-    if (!checker.isValid(c)) record.strict_correct = false;
-    record.min_clearance = std::min(record.min_clearance, checker.clearance(c));
-  };
-  visit(path.front());
   for (size_t i = 1; i < path.size(); ++i) {
-    const double length = space.distance(path[i - 1], path[i]);
-    record.path_length += length;
-    // In double before converting: a huge count must fail the path, never wrap to a small one.
-    const double pieces = std::max(1.0, std::ceil(length / step));
-    if (!(pieces <= static_cast<double>(cspace::kMaxSegmentChecks))) {
-      record.strict_correct = false;
-      continue;
-    }
+    // In double before converting: the loader bounds segment lengths, this keeps any count finite.
+    const double pieces = std::min(std::max(1.0, std::ceil(space.distance(path[i - 1], path[i]) / step)),
+                                   static_cast<double>(cspace::kMaxSegmentChecks));
     const auto n = static_cast<std::int64_t>(pieces);
     for (std::int64_t k = 1; k <= n; ++k) {
       space.interpolate(path[i - 1], path[i], static_cast<double>(k) / n, q);
-      visit(q);
+      record.min_clearance = std::min(record.min_clearance, checker.clearance(q));
     }
   }
+}
+
+// Everything a run shares: the space, the exact checker, the thesis' sampled validator, the certifier
+// and an independent checker for measurements.
+struct World {
+  explicit World(const cspace::Scenario& scenario, int threads)
+      : space(scenario.makeSpace()),
+        checker(scenario.robot, scenario.environment, scenario.self_collision),
+        validator(checker, space, scenario.resolution),
+        certifier(checker, space, scenario.resolution),
+        measuring(scenario.robot, scenario.environment, scenario.self_collision),
+        context{space, checker, validator, threads, &certifier} {}
+  const cspace::ConfigurationSpace space;
+  const cspace::CollisionChecker checker;
+  const cspace::DiscreteMotionValidator validator;
+  const cspace::CertifiedMotionValidator certifier;
+  const cspace::CollisionChecker measuring;
+  const planners::PlanningContext context;
+};
+
+std::vector<std::unique_ptr<planners::Planner>> makePlanners(const cspace::Scenario& scenario,
+                                                             const DriverOptions& options,
+                                                             const planners::PlanningContext& context) {
+  std::vector<std::unique_ptr<planners::Planner>> planners;
+  for (const auto& name : options.planners) {
+    cspace::ParameterSet params = scenario.paramsFor(name);
+    for (const auto& [key, value] : options.overrides)
+      if (key.rfind(name + ".", 0) == 0) params.set(key.substr(name.size() + 1), value);
+    planners.push_back(planners::makePlanner(name, context, params));
+  }
+  for (const auto& [key, value] : options.overrides) {
+    const std::string planner = key.substr(0, key.find('.'));
+    if (std::find(options.planners.begin(), options.planners.end(), planner) == options.planners.end())
+      throw cspace::ScenarioError("flag --set " + key + "=" + value + ": planner '" + planner +
+                                  "' is not among --planners");
+  }
+  return planners;
 }
 
 std::string jsonStats(const Stats& s) {
@@ -120,7 +151,7 @@ void writePictures(const std::string& dir, const cspace::Scenario& scenario, con
   content.samples = view.samples;
   content.risk = view.risk;
   content.roadmap = view.roadmap;
-  const std::string base = dir + "/" + scenario.name + "_" + planner.name();
+  const std::string base = dir + "/" + safeFileName(scenario.name + "_" + planner.name());
   if (writeConfigurationSpaceSvg(base + "_cspace.svg", content)) log << "  wrote " << base << "_cspace.svg\n";
   if (writeWorkspaceSvg(base + "_workspace.svg", content)) log << "  wrote " << base << "_workspace.svg\n";
 }
@@ -131,33 +162,20 @@ int PlannerRuns::solved() const {
   return static_cast<int>(std::count_if(runs.begin(), runs.end(), [](const RunRecord& r) { return r.result.solved(); }));
 }
 
-int PlannerRuns::strictCorrect() const {
-  return static_cast<int>(std::count_if(runs.begin(), runs.end(), [](const RunRecord& r) { return r.strict_correct; }));
+int PlannerRuns::certified() const {
+  return static_cast<int>(std::count_if(runs.begin(), runs.end(), [](const RunRecord& r) { return r.result.certified; }));
+}
+
+void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options) {
+  const World world(scenario, options.threads);
+  makePlanners(scenario, options, world.context);
 }
 
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
                                        std::ostream& log) {
-  const cspace::ConfigurationSpace space = scenario.makeSpace();
-  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
-  const cspace::DiscreteMotionValidator validator(checker, space, scenario.resolution);
-  const cspace::CollisionChecker measuring(scenario.robot, scenario.environment, scenario.self_collision);
-  const planners::PlanningContext context{space, checker, validator, options.threads};
-
-  // Build every planner first: a bad parameter stops the run before any work.
-  std::vector<std::unique_ptr<planners::Planner>> planners;
-  for (const auto& name : options.planners) {
-    cspace::ParameterSet params = scenario.paramsFor(name);
-    for (const auto& [key, value] : options.overrides)
-      if (key.rfind(name + ".", 0) == 0) params.set(key.substr(name.size() + 1), value);
-    planners.push_back(planners::makePlanner(name, context, params));
-  }
-  for (const auto& [key, value] : options.overrides) {
-    const std::string planner = key.substr(0, key.find('.'));
-    if (std::find(options.planners.begin(), options.planners.end(), planner) == options.planners.end())
-      throw cspace::ScenarioError("flag --set " + key + "=" + value + ": planner '" + planner +
-                                  "' is not among --planners");
-  }
-
+  const World world(scenario, options.threads);
+  // Every planner is built first: a bad parameter stops the run before any work.
+  auto planners = makePlanners(scenario, options, world.context);
   std::vector<PlannerRuns> results;
   const auto& queries = scenario.queries;
   for (size_t p = 0; p < planners.size(); ++p) {
@@ -178,6 +196,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
       }
       for (size_t i = 0; i < queries.size(); ++i) {
         RunRecord record;
+        record.seed = seed;
         record.query = static_cast<int>(i);
         const auto t0 = Clock::now();
         if (queries.size() == 1) record.result = planner.solve(queries[i], seed, stop);
@@ -188,7 +207,15 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
           record.time_ms += build_ms;
           addBuild(build, record.result);
         }
-        measurePath(scenario, space, measuring, record);
+        record.raw_length = planners::pathLength(record.result.path, world.space);
+        if (options.simplify && record.result.solved()) {
+          const auto t1 = Clock::now();
+          cspace::Rng rng(seed ^ 0x5157A9E1ULL);
+          auto simplified = planners::simplifyPath(record.result.path, world.certifier, world.space, rng);
+          record.result.path = std::move(simplified.path);
+          record.simplify_ms = planners::msSince(t1);
+        }
+        measurePath(scenario, world.space, world.measuring, record);
         if (r == 0 && i == 0 && !options.svg_dir.empty()) writePictures(options.svg_dir, scenario, planner, record, log);
         log << "  " << runs.planner << " seed " << seed << (queries.size() > 1 ? " query " + std::to_string(i) : "")
             << ": " << planners::planStatusName(record.result.status) << ", " << record.result.collision_checks
@@ -205,24 +232,29 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
 
 void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
                 const std::vector<PlannerRuns>& results, std::ostream& out) {
-  out << "\n" << scenario.name << " (dof " << scenario.robot->dof() << "), " << options.runs << " runs, seeds "
-      << options.seed << ".." << options.seed + options.runs - 1 << ", " << options.threads << " thread(s)\n";
-  out << "mean ± std over all runs (path length and clearance over solved runs); CD = collision checks, "
-         "LP = local planner calls\n";
+  out << "\n" << scenario.name << " (dof " << scenario.robot->dof() << "), " << options.runs << " runs"
+      << (scenario.queries.size() > 1 ? " x " + std::to_string(scenario.queries.size()) + " queries" : "")
+      << ", seeds " << options.seed << ".." << options.seed + options.runs - 1 << ", " << options.threads
+      << " thread(s)" << (options.simplify ? ", paths simplified" : "") << "\n";
+  out << "mean ± std over all runs (path length and clearance over solved runs); solved = certified "
+         "collision-free; CD = collision checks, LP = local planner calls, DQ = distance queries "
+         "(certification)\n";
   const int w = 20;
-  out << std::left << std::setw(17) << "planner" << std::setw(9) << "success" << std::setw(8) << "strict"
-      << std::setw(w) << "CD" << std::setw(w) << "LP" << std::setw(w) << "milestones" << std::setw(w)
-      << "time (ms)" << std::setw(w) << "path length" << "min clearance\n";
+  out << std::left << std::setw(17) << "planner" << std::setw(9) << "solved" << std::setw(w) << "CD"
+      << std::setw(w) << "LP" << std::setw(w) << "DQ" << std::setw(w) << "milestones" << std::setw(w)
+      << "time (ms)" << std::setw(w) << "path length" << (options.simplify ? pad("raw length", w) : "")
+      << "min clearance\n";
   for (const auto& runs : results) {
-    std::ostringstream success;
-    success << runs.solved() << "/" << runs.runs.size();
-    out << std::left << std::setw(17) << runs.planner << std::setw(9) << success.str() << std::setw(8)
-        << runs.strictCorrect()
+    std::ostringstream solved;
+    solved << runs.solved() << "/" << runs.runs.size();
+    out << std::left << std::setw(17) << runs.planner << std::setw(9) << solved.str()
         << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.collision_checks); }), 0), w)
         << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.local_planner_calls); }), 0), w)
+        << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.distance_queries); }), 0), w)
         << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.milestones); }), 0), w)
         << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return r.time_ms; }), 1), w)
         << pad(meanStd(collect(runs, true, [](const RunRecord& r) { return r.path_length; }), 3), w)
+        << (options.simplify ? pad(meanStd(collect(runs, true, [](const RunRecord& r) { return r.raw_length; }), 3), w) : "")
         << meanStd(collect(runs, true, [](const RunRecord& r) { return r.min_clearance; }), 4) << "\n";
   }
   out << std::right;
@@ -231,18 +263,22 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
 void writeJson(const std::string& file, const cspace::Scenario& scenario, const DriverOptions& options,
                const std::vector<PlannerRuns>& results) {
   std::ostringstream o;
-  o << "{ \"scenario\": \"" << scenario.name << "\", \"file\": \"" << scenario.path << "\", \"dof\": "
-    << scenario.robot->dof() << ", \"runs\": " << options.runs << ", \"seed\": " << options.seed
-    << ", \"threads\": " << options.threads << ",\n  \"results\": [\n";
+  o << "{ \"scenario\": " << jsonString(scenario.name) << ", \"file\": " << jsonString(scenario.path)
+    << ", \"dof\": " << scenario.robot->dof() << ", \"runs\": " << options.runs
+    << ", \"queries\": " << scenario.queries.size() << ", \"seed\": " << options.seed
+    << ", \"threads\": " << options.threads << ", \"simplified\": " << (options.simplify ? "true" : "false")
+    << ",\n  \"results\": [\n";
   for (size_t p = 0; p < results.size(); ++p) {
     const auto& runs = results[p];
     const double n = static_cast<double>(runs.runs.size());
     auto field = [&](auto f) { return jsonStats(collect(runs, false, f)); };
     auto solved_field = [&](auto f) { return jsonStats(collect(runs, true, f)); };
-    o << "    { \"planner\": \"" << runs.planner << "\", \"solved\": " << runs.solved()
-      << ", \"success_rate\": " << runs.solved() / n << ", \"strict_correct\": " << runs.strictCorrect()
+    o << "    { \"planner\": " << jsonString(runs.planner) << ", \"solved\": " << runs.solved()
+      << ", \"success_rate\": " << runs.solved() / n << ", \"certified\": " << runs.certified()
       << ",\n      \"collision_checks\": " << field([](const RunRecord& r) { return double(r.result.collision_checks); })
       << ",\n      \"local_planner_calls\": " << field([](const RunRecord& r) { return double(r.result.local_planner_calls); })
+      << ",\n      \"distance_queries\": " << field([](const RunRecord& r) { return double(r.result.distance_queries); })
+      << ",\n      \"certified_segments\": " << field([](const RunRecord& r) { return double(r.result.certified_segments); })
       << ",\n      \"milestones\": " << field([](const RunRecord& r) { return double(r.result.milestones); })
       << ",\n      \"roadmap_edges\": " << field([](const RunRecord& r) { return double(r.result.roadmap_edges); })
       << ",\n      \"support_vectors\": " << field([](const RunRecord& r) { return double(r.result.support_vectors); })
@@ -251,8 +287,11 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
       << ", \"training\": " << field([](const RunRecord& r) { return r.result.times.training_ms; })
       << ", \"milestones\": " << field([](const RunRecord& r) { return r.result.times.milestones_ms; })
       << ", \"roadmap\": " << field([](const RunRecord& r) { return r.result.times.roadmap_ms; })
-      << ", \"query\": " << field([](const RunRecord& r) { return r.result.times.query_ms; }) << "}"
+      << ", \"query\": " << field([](const RunRecord& r) { return r.result.times.query_ms; })
+      << ", \"simplify\": " << field([](const RunRecord& r) { return r.simplify_ms; }) << "}"
       << ",\n      \"path_length\": " << solved_field([](const RunRecord& r) { return r.path_length; })
+      << ",\n      \"raw_path_length\": " << solved_field([](const RunRecord& r) { return r.raw_length; })
+      << ",\n      \"smoothness\": " << solved_field([](const RunRecord& r) { return r.smoothness; })
       << ",\n      \"min_clearance\": " << solved_field([](const RunRecord& r) { return r.min_clearance; })
       << ",\n      \"statuses\": [";
     for (size_t r = 0; r < runs.runs.size(); ++r)
@@ -261,6 +300,48 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
   }
   o << "  ]\n}\n";
   writeFileAtomically(file, o.str());
+}
+
+void writePathsJson(const std::string& file, const cspace::Scenario& scenario,
+                    const std::vector<PlannerRuns>& results) {
+  std::ostringstream o;
+  o << std::setprecision(17) << "{ \"scenario\": " << jsonString(scenario.name) << ", \"dof\": "
+    << scenario.robot->dof() << ",\n  \"runs\": [\n";
+  bool first = true;
+  for (const auto& runs : results)
+    for (const auto& r : runs.runs) {
+      o << (first ? "" : ",\n") << "    { \"planner\": " << jsonString(runs.planner) << ", \"seed\": " << r.seed
+        << ", \"query\": " << r.query << ", \"status\": \"" << planners::planStatusName(r.result.status)
+        << "\", \"certified\": " << (r.result.certified ? "true" : "false") << ", \"path\": [";
+      for (size_t i = 0; i < r.result.path.size() && r.result.solved(); ++i) {
+        o << (i ? ", " : "") << "[";
+        for (int d = 0; d < r.result.path[i].size(); ++d) o << (d ? ", " : "") << r.result.path[i][d];
+        o << "]";
+      }
+      o << "] }";
+      first = false;
+    }
+  o << "\n  ]\n}\n";
+  writeFileAtomically(file, o.str());
+}
+
+void writePathMatrices(const std::string& dir, const cspace::Scenario& scenario,
+                       const std::vector<PlannerRuns>& results, std::ostream& log) {
+  for (const auto& runs : results)
+    for (const auto& r : runs.runs) {
+      if (!r.result.solved()) continue;
+      std::ostringstream name, text;
+      name << scenario.name << "_" << runs.planner << "_seed" << r.seed;
+      if (scenario.queries.size() > 1) name << "_query" << r.query;
+      text << std::setprecision(17);
+      for (const auto& q : r.result.path) {
+        for (int d = 0; d < q.size(); ++d) text << (d ? " " : "") << q[d];
+        text << "\n";
+      }
+      const std::string file = dir + "/" + safeFileName(name.str()) + ".txt";
+      writeFileAtomically(file, text.str());
+      log << "  wrote " << file << "\n";
+    }
 }
 
 }  // namespace svmp::experiments

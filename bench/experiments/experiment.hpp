@@ -1,7 +1,9 @@
 #pragma once
-// Runs each planner N times on one scenario (seeds S, S+1, ...), measures every returned path the same
-// way (length, minimum clearance and strict correctness at a quarter of the checking resolution), and
-// reports the thesis-style table and the JSON described in docs/architecture.md.
+// Runs each planner N times on one scenario (seeds S, S+1, ...), proves every returned path
+// collision-free with the certified motion validator (a run is solved only when its path is), measures
+// every path the same way (length, minimum clearance at a quarter of the checking resolution, OMPL's
+// smoothness), optionally simplifies it, and reports the thesis-style table and the JSON described in
+// docs/architecture.md.
 #include <ostream>
 #include <string>
 #include <vector>
@@ -14,19 +16,26 @@ namespace svmp::experiments {
 
 struct RunRecord {
   planners::PlanResult result;
+  std::uint64_t seed = 0;
   int query = 0;             // index into the scenario's queries
   double time_ms = 0;        // wall time of solve() (first query: with the build)
-  double path_length = 0;    // weighted metric, solved runs only
+  double path_length = 0;    // weighted metric, solved runs only (after simplification, when asked)
+  double raw_length = 0;     // before simplification
+  double smoothness = 0;     // OMPL's PathGeometric::smoothness of the final path
+  double simplify_ms = 0;
   double min_clearance = 0;  // FCL distance along the path at resolution / 4
-  bool strict_correct = false;
 };
 
 struct PlannerRuns {
   std::string planner;
   std::vector<RunRecord> runs;
-  int solved() const;
-  int strictCorrect() const;
+  int solved() const;     // solved, which with the driver's certifier means certified
+  int certified() const;
 };
+
+// Builds every planner of `options` with the scenario's parameters and --set overrides, as a run would,
+// and drops them: throws cspace::ScenarioError naming the planner, field and value (svmp-plan --check).
+void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options);
 
 // Throws cspace::ScenarioError for unknown planners or bad parameters (before any run starts).
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
@@ -36,5 +45,12 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
 // Written whole or not at all (temporary file, then rename). Throws std::runtime_error on failure.
 void writeJson(const std::string& file, const cspace::Scenario& scenario, const DriverOptions& options,
                const std::vector<PlannerRuns>& results);
+// --paths: per planner and run, the status, seed, query and the path's waypoints (JSON, whole or not at all).
+void writePathsJson(const std::string& file, const cspace::Scenario& scenario,
+                    const std::vector<PlannerRuns>& results);
+// --path-dir: DIR/<scenario>_<planner>_seed<S>[_query<i>].txt per solved run, OMPL's
+// PathGeometric::printAsMatrix format (one configuration a line, coordinates separated by spaces).
+void writePathMatrices(const std::string& dir, const cspace::Scenario& scenario,
+                       const std::vector<PlannerRuns>& results, std::ostream& log);
 
 }  // namespace svmp::experiments

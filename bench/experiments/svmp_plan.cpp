@@ -25,18 +25,26 @@ int main(int argc, char** argv) {
   }
   try {
     const cspace::Scenario scenario = cspace::loadScenario(options.scenario);
-    if (options.check) return experiments::printScenarioCheck(scenario, std::cout) ? 0 : 1;
-    std::error_code error;
-    if (!options.svg_dir.empty() && !std::filesystem::create_directories(options.svg_dir, error) && error) {
-      std::cerr << "svmp-plan: flag --svg: cannot create directory '" << options.svg_dir << "': " << error.message() << "\n";
-      return 2;
+    if (options.check) {
+      experiments::validatePlanners(scenario, options);
+      return experiments::printScenarioCheck(scenario, std::cout) ? 0 : 1;
+    }
+    for (const auto& [flag, dir] : {std::pair{"--svg", options.svg_dir}, std::pair{"--path-dir", options.paths_dir}}) {
+      std::error_code error;
+      if (!dir.empty() && !std::filesystem::create_directories(dir, error) && error) {
+        std::cerr << "svmp-plan: flag " << flag << ": cannot create directory '" << dir << "': " << error.message() << "\n";
+        return 2;
+      }
     }
     if (!options.json_path.empty()) experiments::checkWritable("--json", options.json_path);
+    if (!options.paths_json.empty()) experiments::checkWritable("--paths", options.paths_json);
     std::cerr << "svmp-plan: " << scenario.name << ": running " << options.planners.size() << " planner(s), "
               << options.runs << " run(s) each\n";
     const auto results = experiments::runExperiment(scenario, options, std::cerr);
     experiments::printTable(scenario, options, results, std::cout);
     if (!options.json_path.empty()) experiments::writeJson(options.json_path, scenario, options, results);
+    if (!options.paths_json.empty()) experiments::writePathsJson(options.paths_json, scenario, results);
+    if (!options.paths_dir.empty()) experiments::writePathMatrices(options.paths_dir, scenario, results, std::cerr);
     return 0;
   } catch (const cspace::ScenarioError& e) {
     std::cerr << "svmp-plan: " << e.what() << "\n";

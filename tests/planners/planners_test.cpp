@@ -2,6 +2,7 @@
 // narrow passage that SVMP's boundary milestones are made for.
 #include <gtest/gtest.h>
 
+#include "planners/path_simplifier.hpp"
 #include "planners/prm_planner.hpp"
 #include "planners/roadmap_builder.hpp"
 #include "planners/svmp_planner.hpp"
