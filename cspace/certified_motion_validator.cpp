@@ -37,8 +37,9 @@ bool CertifiedMotionValidator::prove(const Eigen::Ref<const Eigen::VectorXd>& a,
       double t0, d0, t1, d1;
     };
     std::vector<Interval> stack = {{0, d0, 1, distanceAt(1)}};
-    ok = need_prefix || stack.back().d1 > tolerance_;  // an end in contact fails at once
-    while (ok && !stack.empty()) {
+    ok = stack.back().d1 > tolerance_;
+    if (!ok && !need_prefix) stack.clear();  // an end in contact fails at once
+    while (!stack.empty()) {
       const Interval i = stack.back();
       if (i.d0 + i.d1 > (i.t1 - i.t0) * length) {
         stack.pop_back();
@@ -46,10 +47,17 @@ bool CertifiedMotionValidator::prove(const Eigen::Ref<const Eigen::VectorXd>& a,
         continue;
       }
       const double mid = 0.5 * (i.t0 + i.t1);
-      const double dm = distanceAt(mid);
-      if (dm <= tolerance_ || queries > kMaxDistanceQueries || !(mid > i.t0 && mid < i.t1)) {
+      if (queries >= kMaxDistanceQueries || !(mid > i.t0 && mid < i.t1)) {
         ok = false;
         break;
+      }
+      const double dm = distanceAt(mid);
+      if (dm <= tolerance_) {
+        ok = false;
+        // Nothing beyond mid can be proven; with need_prefix, push the proven prefix towards it.
+        if (!need_prefix || (mid - i.t0) * length <= tolerance_) break;
+        stack = {{i.t0, i.d0, mid, dm}};
+        continue;
       }
       stack.back() = {mid, dm, i.t1, i.d1};
       stack.push_back({i.t0, i.d0, mid, dm});
