@@ -27,6 +27,7 @@ inline double msSince(Clock::time_point t0) {
 
 struct PhaseTimes {
   double sampling_ms = 0, training_ms = 0, milestones_ms = 0, roadmap_ms = 0, query_ms = 0;
+  double certify_ms = 0;  // proving path segments free (part of query_ms for roadmap planners)
   double total() const { return sampling_ms + training_ms + milestones_ms + roadmap_ms + query_ms; }
 };
 

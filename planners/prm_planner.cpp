@@ -78,6 +78,7 @@ void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termina
   result.times.query_ms += msSince(t0);
   result.path = std::move(outcome.path);
   result.certified = outcome.certified;
+  result.times.certify_ms += outcome.certify_ms;
   result.status = result.path.empty() ? PlanStatus::kFailed : PlanStatus::kSolved;
   if (!result.solved()) result.message = "start and goal are not connected by the roadmap";
   result.milestones = roadmap_.numNodes();

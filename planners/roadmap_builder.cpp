@@ -55,7 +55,9 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
     for (size_t i = 0; context.certifier && i + 1 < nodes.size() && disproved < 0; ++i) {
       const int u = nodes[i], v = nodes[i + 1];
       if (roadmap.isCertified(u, v)) continue;
+      const auto t0 = Clock::now();
       const bool free = context.certifier->isValid(roadmap.node(u), roadmap.node(v));
+      out.certify_ms += msSince(t0);
       free ? roadmap.markCertified(u, v) : roadmap.removeEdge(u, v);
       if (u < shared && v < shared) free ? milestones->markCertified(u, v) : milestones->removeEdge(u, v);
       if (!free) disproved = static_cast<int>(i);

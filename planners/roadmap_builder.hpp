@@ -19,6 +19,7 @@ struct QueryOutcome {
   int start_node = -1, goal_node = -1;  // their indices in the query roadmap
   bool certified = false;             // every edge of the path proven free by context.certifier
   int disproved_edges = 0;            // edges certification removed (lazy repair)
+  double certify_ms = 0;              // time spent proving edges
 };
 
 // Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean),

@@ -332,6 +332,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   for (int round = 0;; ++round) {
     Roadmap with_query = roadmap_;
     QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_);
+    result.times.certify_ms += outcome.certify_ms;
     if (!outcome.path.empty()) {
       result.path = std::move(outcome.path);
       result.certified = outcome.certified;

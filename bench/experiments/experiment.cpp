@@ -58,6 +58,7 @@ void addBuild(const planners::PlanResult& build, planners::PlanResult& query) {
   query.times.training_ms += build.times.training_ms;
   query.times.milestones_ms += build.times.milestones_ms;
   query.times.roadmap_ms += build.times.roadmap_ms;
+  query.times.certify_ms += build.times.certify_ms;
 }
 
 // Path quality measured by an independent checker, so the planners' counters are untouched.
@@ -288,6 +289,7 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
       << ", \"milestones\": " << field([](const RunRecord& r) { return r.result.times.milestones_ms; })
       << ", \"roadmap\": " << field([](const RunRecord& r) { return r.result.times.roadmap_ms; })
       << ", \"query\": " << field([](const RunRecord& r) { return r.result.times.query_ms; })
+      << ", \"certify\": " << field([](const RunRecord& r) { return r.result.times.certify_ms; })
       << ", \"simplify\": " << field([](const RunRecord& r) { return r.simplify_ms; }) << "}"
       << ",\n      \"path_length\": " << solved_field([](const RunRecord& r) { return r.path_length; })
       << ",\n      \"raw_path_length\": " << solved_field([](const RunRecord& r) { return r.raw_length; })
