@@ -24,7 +24,7 @@ LocalPlannerOptions LocalPlannerOptions::fromParameters(const cspace::ParameterS
   o.sampling.link_resolution = params.getDouble("link_resolution", o.sampling.link_resolution, 1e-6, 1e6);
   o.sampling.obstacle_resolution = params.getDouble("obstacle_resolution", o.sampling.obstacle_resolution, 1e-6, 1e6);
   o.sampling.boundary_resolution = params.getDouble("boundary_resolution", o.sampling.boundary_resolution, 1e-6, 1e6);
-  o.sampling.max_samples = static_cast<int>(params.getInt("max_samples", o.sampling.max_samples, 2, 1000000));
+  o.sampling.max_samples = static_cast<int>(params.getInt("max_samples", o.sampling.max_samples, 2, 100000));
   o.max_iterations = static_cast<int>(params.getInt("max_iterations", o.max_iterations, 1, 100000000));
   o.stall_iterations = static_cast<int>(params.getInt("stall_iterations", o.stall_iterations, 1, 100000000));
   return o;

@@ -9,14 +9,14 @@ namespace svmp::planners {
 
 PrmOptions PrmOptions::fromParameters(const cspace::ParameterSet& params) {
   PrmOptions o;
-  // Each milestone costs about 100 bytes per dimension with its neighbours: 1e7 is a few GB at most.
-  o.samples = static_cast<int>(params.getInt("samples", o.samples, 1, 10000000));
+  // A milestone with its k edges costs a few hundred bytes: 2e6 stays below a GB.
+  o.samples = static_cast<int>(params.getInt("samples", o.samples, 1, 2000000));
   o.k = static_cast<int>(params.getInt("k", o.k, 1, 10000));
   return o;
 }
 
 std::string PrmOptions::validate() const {
-  if (samples < 1 || samples > 10000000) return "samples must be in [1, 1e7], got " + std::to_string(samples);
+  if (samples < 1 || samples > 2000000) return "samples must be in [1, 2e6], got " + std::to_string(samples);
   if (k < 1) return "k must be >= 1, got " + std::to_string(k);
   return "";
 }

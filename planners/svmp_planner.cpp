@@ -16,7 +16,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.sigma = params.getDouble("sigma", o.sigma, 1e-9, 1e6);
   o.C = params.getDouble("C", o.C, 1e-9, 1e12);
   o.step = params.getDouble("step", o.step, 1e-9, 1e6);
-  o.samples_per_tree = static_cast<int>(params.getInt("samples_per_tree", o.samples_per_tree, 1, 1000000));
+  o.samples_per_tree = static_cast<int>(params.getInt("samples_per_tree", o.samples_per_tree, 1, 100000));
   o.k = static_cast<int>(params.getInt("k", o.k, 1, 10000));
   o.eps = params.getDouble("eps", o.eps, 1e-15, 1);
   o.cache_mb = params.getDouble("cache_mb", o.cache_mb, 1, 1e6);
@@ -51,7 +51,15 @@ DescentOptions SvmpOptions::descent() const {
 }
 
 SVMP_REGISTER_PLANNER("svmp", [](const PlanningContext& context, const cspace::ParameterSet& params) {
-  return std::make_unique<SvmpPlanner>(context, SvmpOptions::fromParameters(params));
+  const SvmpOptions o = SvmpOptions::fromParameters(params);
+  // One tree per real obstacle and the self-collision region; every sample is an SVM training point.
+  constexpr long kMaxSamples = 2000000;
+  const long trees = context.checker.environment().numReal() + 1;
+  if (o.samples_per_tree * trees > kMaxSamples)
+    throw cspace::ScenarioError("planners.svmp.samples_per_tree: " + std::to_string(o.samples_per_tree) + " x " +
+                                std::to_string(trees) + " trees exceeds " + std::to_string(kMaxSamples) +
+                                " obstacle samples");
+  return std::make_unique<SvmpPlanner>(context, o);
 });
 
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)

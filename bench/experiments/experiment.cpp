@@ -108,7 +108,7 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(const cspace::Scena
   for (const auto& name : options.planners) {
     cspace::ParameterSet params = scenario.paramsFor(name);
     for (const auto& [key, value] : options.overrides)
-      if (key.rfind(name + ".", 0) == 0) params.set(key.substr(name.size() + 1), value);
+      if (key.rfind(name + ".", 0) == 0) params.set(key.substr(name.size() + 1), value, "flag --set " + key + "=" + value);
     planners.push_back(planners::makePlanner(name, context, params));
   }
   for (const auto& [key, value] : options.overrides) {

@@ -7,7 +7,8 @@
 namespace svmp::cspace {
 
 std::string ParameterSet::field(const std::string& key) const {
-  return source_ + ": field '" + prefix_ + key + "'";
+  const auto it = sources_.find(key);
+  return (it != sources_.end() ? it->second : source_) + ": field '" + prefix_ + key + "'";
 }
 
 double ParameterSet::getDouble(const std::string& key, double fallback, double min, double max) const {

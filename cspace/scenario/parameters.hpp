@@ -21,7 +21,12 @@ class ParameterSet {
   ParameterSet(std::string source, std::string prefix, std::map<std::string, std::string> values)
       : source_(std::move(source)), prefix_(std::move(prefix)), values_(std::move(values)) {}
 
-  void set(const std::string& key, const std::string& value) { values_[key] = value; }
+  // `source` names where the value came from when that is not the scenario file ("flag --set"), so
+  // an error about it blames the right place.
+  void set(const std::string& key, const std::string& value, const std::string& source = "") {
+    values_[key] = value;
+    if (!source.empty()) sources_[key] = source;
+  }
   bool has(const std::string& key) const { return values_.count(key) > 0; }
   // Each getter returns the fallback when the key is absent and throws ScenarioError when the value
   // does not parse or lies outside [min, max].
@@ -38,6 +43,7 @@ class ParameterSet {
   std::string field(const std::string& key) const;
   std::string source_, prefix_;
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::string> sources_;  // per key, when set from elsewhere than source_
   mutable std::set<std::string> used_;
 };
 

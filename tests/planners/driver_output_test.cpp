@@ -1,0 +1,100 @@
+// What the driver writes: the JSON of results and of paths parse back (yaml-cpp reads JSON) with the
+// same numbers and waypoints, a scenario name with quotes stays valid JSON, OMPL matrix files hold one
+// configuration a line, and a hostile name cannot write outside the output directory.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bench/experiments/experiment.hpp"
+#include "bench/experiments/output_text.hpp"
+
+namespace svmp::experiments {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Experiment {
+  cspace::Scenario scenario;
+  DriverOptions options;
+  std::vector<PlannerRuns> results;
+};
+
+Experiment runFig35(const std::string& name) {
+  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
+  Experiment run{cspace::loadScenario(path), {}, {}};
+  run.scenario.name = name;
+  run.options.scenario = path;
+  run.options.planners = {"svmp", "prm"};
+  run.options.runs = 3;
+  run.options.simplify = true;
+  std::ostringstream log;
+  run.results = runExperiment(run.scenario, run.options, log);
+  return run;
+}
+
+TEST(DriverOutput, PathsAndResultsParseBackWithTheSameValues) {
+  const Experiment run = runFig35("fig \"3.5\" \\ test");
+  const fs::path dir = fs::temp_directory_path() / "svmp_driver_output_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  writeJson((dir / "r.json").string(), run.scenario, run.options, run.results);
+  writePathsJson((dir / "p.json").string(), run.scenario, run.results);
+  std::ostringstream log;
+  writePathMatrices(dir.string(), run.scenario, run.results, log);
+
+  const YAML::Node results = YAML::LoadFile((dir / "r.json").string());
+  EXPECT_EQ(results["scenario"].as<std::string>(), run.scenario.name);
+  ASSERT_EQ(results["results"].size(), 2u);
+  EXPECT_EQ(results["results"][0]["solved"].as<int>(), run.results[0].solved());
+  EXPECT_EQ(results["results"][0]["certified"].as<int>(), run.results[0].certified());
+  EXPECT_EQ(results["results"][0]["solved"].as<int>(), results["results"][0]["certified"].as<int>());
+
+  const YAML::Node paths = YAML::LoadFile((dir / "p.json").string());
+  ASSERT_EQ(paths["runs"].size(), 6u);
+  int matrices = 0;
+  for (size_t p = 0, n = 0; p < run.results.size(); ++p)
+    for (const auto& r : run.results[p].runs) {
+      const YAML::Node node = paths["runs"][n++];
+      EXPECT_EQ(node["planner"].as<std::string>(), run.results[p].planner);
+      EXPECT_EQ(node["seed"].as<std::uint64_t>(), r.seed);
+      ASSERT_EQ(node["path"].size(), r.result.solved() ? r.result.path.size() : 0u);
+      for (size_t i = 0; i < node["path"].size(); ++i)
+        for (int d = 0; d < r.result.path[i].size(); ++d)
+          EXPECT_EQ(node["path"][i][d].as<double>(), r.result.path[i][d]);  // 17 digits: exact
+      if (!r.result.solved()) continue;
+      // The matrix file: one line per waypoint, dof numbers each.
+      ++matrices;
+      const fs::path file = dir / (safeFileName(run.scenario.name + "_" + run.results[p].planner + "_seed" +
+                                                std::to_string(r.seed)) + ".txt");
+      std::ifstream in(file);
+      ASSERT_TRUE(in) << file;
+      size_t lines = 0;
+      for (std::string line; std::getline(in, line); ++lines) {
+        std::istringstream values(line);
+        double x, y;
+        ASSERT_TRUE(values >> x >> y);
+        EXPECT_EQ(x, r.result.path[lines][0]);
+        EXPECT_EQ(y, r.result.path[lines][1]);
+      }
+      EXPECT_EQ(lines, r.result.path.size());
+    }
+  EXPECT_GT(matrices, 0);
+  // Simplification never lengthens a path.
+  for (const auto& runs : run.results)
+    for (const auto& r : runs.runs)
+      if (r.result.solved()) EXPECT_LE(r.path_length, r.raw_length + 1e-12);
+  fs::remove_all(dir);
+}
+
+TEST(DriverOutput, FileNamesCannotLeaveTheirDirectory) {
+  EXPECT_EQ(safeFileName("../../x"), "_.._x");
+  EXPECT_EQ(safeFileName("a/b\\c d"), "a_b_c_d");
+  EXPECT_EQ(safeFileName(".."), "_");
+  EXPECT_EQ(jsonString("a\"b\\c\n\x01"), "\"a\\\"b\\\\c\\n\\u0001\"");
+}
+
+}  // namespace
+}  // namespace svmp::experiments
