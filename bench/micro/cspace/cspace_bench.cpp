@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cspace/collision_checker.hpp"
+#include "cspace/certified_motion_validator.hpp"
 #include "cspace/motion_validator.hpp"
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
@@ -83,13 +84,15 @@ void BM_Clearance(benchmark::State& state, const std::string& name) {
   state.SetItemsProcessed(state.iterations());
 }
 
-// Random segments of metric length ~0.5 at resolution 0.01 (about 50 checks when free).
+// Random segments of metric length ~0.5 at resolution 0.01 (about 50 checks when free), sampled
+// (the thesis' local planner) or certified (FCL free distance and the displacement bound).
+template <class Validator>
 void BM_MotionValidator(benchmark::State& state, const std::string& name) {
   const World world = makeWorld(name);
   const CollisionChecker checker(world.robot, world.env);
   const svmp::cspace::ConfigurationSpace space(world.robot->lowerLimits(), world.robot->upperLimits(),
                                                Eigen::VectorXd::Ones(world.robot->dof()));
-  const svmp::cspace::DiscreteMotionValidator validator(checker, space, 0.01);
+  const Validator validator(checker, space, 0.01);
   const Eigen::MatrixXd a = randomConfigurations(*world.robot, 256);
   Eigen::MatrixXd b(a.rows(), a.cols());
   std::mt19937_64 rng(2);
@@ -101,6 +104,14 @@ void BM_MotionValidator(benchmark::State& state, const std::string& name) {
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["checks_per_segment"] = static_cast<double>(checker.collisionChecks()) / state.iterations();
+  state.counters["distances_per_segment"] = static_cast<double>(checker.distanceQueries()) / state.iterations();
+}
+
+void BM_SampledSegment(benchmark::State& state, const std::string& name) {
+  BM_MotionValidator<svmp::cspace::DiscreteMotionValidator>(state, name);
+}
+void BM_CertifiedSegment(benchmark::State& state, const std::string& name) {
+  BM_MotionValidator<svmp::cspace::CertifiedMotionValidator>(state, name);
 }
 
 }  // namespace
@@ -112,7 +123,11 @@ BENCHMARK_CAPTURE(BM_CollisionCheck, crs_f3, "crs_f3");
 BENCHMARK_CAPTURE(BM_CollisionCheck, panda, "panda");
 BENCHMARK_CAPTURE(BM_Clearance, planar6, "planar6");
 BENCHMARK_CAPTURE(BM_Clearance, panda, "panda");
-BENCHMARK_CAPTURE(BM_MotionValidator, planar6, "planar6");
-BENCHMARK_CAPTURE(BM_MotionValidator, panda, "panda");
+BENCHMARK_CAPTURE(BM_SampledSegment, point2d, "point2d");
+BENCHMARK_CAPTURE(BM_SampledSegment, planar6, "planar6");
+BENCHMARK_CAPTURE(BM_SampledSegment, panda, "panda");
+BENCHMARK_CAPTURE(BM_CertifiedSegment, point2d, "point2d");
+BENCHMARK_CAPTURE(BM_CertifiedSegment, planar6, "planar6");
+BENCHMARK_CAPTURE(BM_CertifiedSegment, panda, "panda");
 
 BENCHMARK_MAIN();
