@@ -2,6 +2,7 @@
 // Configuration space: joint bounds, the weighted joint metric of thesis eq. 4.3
 // dist(q0, q1) = sqrt(sum_d w_d (q0_d - q1_d)^2), straight-line interpolation and uniform sampling.
 // Every random choice takes the caller's generator, so results follow from the seed.
+// Thread safety: immutable after construction; const methods may run concurrently.
 #include <Eigen/Core>
 #include <random>
 

@@ -2,6 +2,7 @@
 // The workspace: obstacles as FCL primitives with a world pose, an id (>= 1; the collision checker
 // returns it), an optional `virtual` flag for guide obstacles that may be touched (thesis ch. 2.3) and
 // a class weight that scales the SVM penalty C of that obstacle's samples (thesis ch. 4.1.2).
+// Thread safety: immutable after construction; const methods may run concurrently.
 #include <optional>
 #include <string>
 #include <vector>

@@ -10,6 +10,7 @@
 // Parameters (scenario `planners.local`): sigma, C, mu, step, boundary_tolerance, goal_radius, eps,
 // labelling (balanced|random), link_resolution, obstacle_resolution, boundary_resolution, max_samples,
 // max_iterations, stall_iterations. Everything depends on the query: build() learns nothing ahead.
+// Thread safety: as every Planner (planners/planner.hpp).
 #include <optional>
 
 #include "cspace/scenario/parameters.hpp"

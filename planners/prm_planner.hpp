@@ -4,6 +4,7 @@
 // milestones, each connected to its k nearest milestones in other components by the same straight-line
 // local planner SVMP uses; queries by A*. build() once, query() many times.
 // Parameters (scenario `planners.prm`): the fields of PrmOptions, same names.
+// Thread safety: as every Planner (planners/planner.hpp); OpenMP inside over the sample checks.
 #include <optional>
 
 #include "cspace/scenario/parameters.hpp"

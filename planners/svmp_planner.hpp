@@ -8,6 +8,7 @@
 // disconnection are guided down to the decision boundaries and the roadmap is reconnected.
 // The roadmap answers many queries: build() once, query() many times; clear() forgets it.
 // Parameters (scenario `planners.svmp`, `--set svmp.KEY=VALUE`): the fields of SvmpOptions, same names.
+// Thread safety: as every Planner (planners/planner.hpp); OpenMP inside over trees, descents, checks.
 #include <optional>
 
 #include "planners/obstacle_sampler.hpp"

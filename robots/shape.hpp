@@ -1,6 +1,7 @@
 #pragma once
 // Collision shapes of robot links and obstacles. Only FCL primitives are used: FCL meshes do not detect
 // one body entirely inside another, and obstacle sampling (thesis ch. 3.1) lives inside obstacles.
+// Thread safety: Shape is a plain value.
 #include <Eigen/Geometry>
 #include <string>
 

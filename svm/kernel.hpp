@@ -4,6 +4,7 @@
 // kernel is the one of Fastron (Das, Yip, ICRA 2017); the block-sum kernel sums a base kernel over
 // consecutive blocks of coordinates of a feature vector (forward-kinematics "FK kernel": a feature
 // vector holds the positions of several points on the robot, one block each).
+// Thread safety: Kernel is an immutable value; its methods may run concurrently.
 #pragma once
 
 #include <string>

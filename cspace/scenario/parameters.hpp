@@ -2,6 +2,7 @@
 // Planner parameters as given in a scenario file (`planners: {svmp: {sigma: 0.3}}`) and overridden per run
 // (`--set svmp.sigma=0.25`). Values stay text until a planner reads them with its own bounds, so every
 // error names the source, the field and the value; keys no planner reads are reported as typos.
+// Thread safety: none (getters record which keys were read); one reader at a time.
 #include <map>
 #include <set>
 #include <stdexcept>
