@@ -3,7 +3,7 @@
 #include <iomanip>
 
 #include "cspace/collision_checker.hpp"
-#include "cspace/motion_validator.hpp"
+#include "cspace/certified_motion_validator.hpp"
 
 namespace svmp::experiments {
 namespace {
@@ -46,7 +46,7 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
         << (o.weight != 1.0 ? " weight " + std::to_string(o.weight) : "") << "\n";
   }
   bool ok = true;
-  cspace::DiscreteMotionValidator fine(checker, space, scenario.resolution / 4);
+  const cspace::CertifiedMotionValidator certifier(checker, space, scenario.resolution);
   for (size_t i = 0; i < scenario.queries.size(); ++i) {
     const auto& q = scenario.queries[i];
     for (const auto& [label, config] : {std::pair{"start", &q.start}, std::pair{"goal ", &q.goal}}) {
@@ -63,12 +63,12 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
     bool witness_ok = true;
     double min_clearance = 1e300;
     for (size_t k = 0; k + 1 < path.size(); ++k) {
-      witness_ok &= checker.isValid(path[k + 1]) && fine.isValid(path[k], path[k + 1]);
+      witness_ok &= checker.isValid(path[k + 1]) && certifier.isValid(path[k], path[k + 1]);
       min_clearance = std::min(min_clearance, checker.clearance(path[k + 1]));
     }
     ok &= witness_ok;
     out << "query " << i << "    witness path of " << path.size() - 1 << " segments "
-        << (witness_ok ? "is collision-free" : "COLLIDES") << " at resolution/4"
+        << (witness_ok ? "is certified collision-free" : "is NOT certified collision-free")
         << ", waypoint clearance >= " << min_clearance << "\n";
   }
   return ok;

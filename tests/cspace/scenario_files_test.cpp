@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
-#include "cspace/motion_validator.hpp"
 #include "cspace/scenario/scenario.hpp"
 
 namespace svmp::cspace {
@@ -35,7 +35,7 @@ TEST(ScenarioFilesTest, EveryFileLoadsAndItsWitnessIsFree) {
     }
     const CollisionChecker checker(s.robot, s.environment, s.self_collision);
     const ConfigurationSpace space = s.makeSpace();
-    const DiscreteMotionValidator fine(checker, space, s.resolution / 4);
+    const CertifiedMotionValidator certified(checker, space, s.resolution);
     ASSERT_FALSE(s.queries.empty());
     for (size_t i = 0; i < s.queries.size(); ++i) {
       const Query& query = s.queries[i];
@@ -46,9 +46,9 @@ TEST(ScenarioFilesTest, EveryFileLoadsAndItsWitnessIsFree) {
       path.insert(path.end(), query.witness.begin(), query.witness.end());
       path.push_back(query.goal);
       for (size_t k = 0; k + 1 < path.size(); ++k)
-        EXPECT_TRUE(fine.isValidIncludingEnd(path[k], path[k + 1]))
+        EXPECT_TRUE(certified.isValid(path[k], path[k + 1]))
             << "query " << i << ": witness segment " << k << " [" << path[k].transpose() << "] -> ["
-            << path[k + 1].transpose() << "] collides";
+            << path[k + 1].transpose() << "] is not certified free";
     }
   }
 }
