@@ -264,7 +264,7 @@ bool SvmpPlanner::makeRoadmap(PhaseTimes& times, const Termination& stop) {
 }
 
 bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng,
-                         const Termination& stop) {
+                         const Termination& stop, std::string& why) {
   // Frontier of a component: its node closest to a node outside it. Random configurations around the
   // segment between the two are guided down to the decision boundaries (thesis ch. 3.5).
   const Eigen::VectorXd& scale = context_.space.metricScale();
@@ -294,9 +294,16 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, csp
       starts.push_back(q);
     }
   }
-  if (starts.empty()) return false;
+  if (starts.empty()) {
+    why = "no node outside the start's and goal's components to guide samples towards";
+    return false;
+  }
   const int old_n = roadmap_.numNodes();
-  if (addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true) == 0) return false;
+  if (addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true) == 0) {
+    why = "the last round's " + std::to_string(starts.size()) + " guided samples gave no new free milestone";
+    return true;  // another round draws new samples
+  }
+  why.clear();
   nn_.emplace(roadmap_.nodes(), scale);
   connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
   return true;
@@ -337,6 +344,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
                          PlanResult& result) {
   const auto t0 = Clock::now();
   cspace::Rng rng(seed ^ 0xA5A5A5A5ULL);
+  std::string why = options_.repair_rounds == 0 ? "repair_rounds is 0" : "";  // why still not connected
   for (int round = 0;; ++round) {
     Roadmap with_query = roadmap_;
     QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_);
@@ -348,7 +356,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       break;
     }
     const bool repaired = round < options_.repair_rounds && !stop() &&
-                          repair(with_query, outcome.start_node, outcome.goal_node, rng, stop);
+                          repair(with_query, outcome.start_node, outcome.goal_node, rng, stop, why);
     if (stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
@@ -361,9 +369,10 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
         goal_size += with_query.connected(i, outcome.goal_node);
       }
       result.status = PlanStatus::kFailed;
-      result.message = "start and goal are not connected after " + std::to_string(round) +
-                       " repair rounds (their components hold " + std::to_string(start_size) + " and " +
-                       std::to_string(goal_size) + " of " + std::to_string(with_query.numNodes()) + " nodes)";
+      result.message = "start and goal are not connected after " + std::to_string(round) + " of " +
+                       std::to_string(options_.repair_rounds) + " repair rounds (their components hold " +
+                       std::to_string(start_size) + " and " + std::to_string(goal_size) + " of " +
+                       std::to_string(with_query.numNodes()) + " nodes" + (why.empty() ? "" : "; " + why) + ")";
       break;
     }
   }

@@ -85,7 +85,10 @@ class SvmpPlanner final : public Planner {
   // Stops early (returning what it added) when `stop` fires.
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
                     const Termination& stop, bool keep_free_starts = false);
-  bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng, const Termination& stop);
+  // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
+  // round added nothing.
+  bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng, const Termination& stop,
+              std::string& why);
   // A descended milestone that collides lies where the SVM boundary, smooth at the scale sigma, misses
   // a passage narrower than sigma. Along the boundary's normal (grad F_k) within sigma, find the free
   // interval nearest to it (doubling steps from resolution/4, then bisection of both edges) and return
