@@ -40,7 +40,7 @@ class ValidityChecker {
   // C-obstacle to sample, thesis ch. 4.3.2).
   virtual bool checksSelfCollision() const = 0;
 
-  // Configurations tested since construction (atomic; read differences, see planners/counter_scope.hpp).
+  // Configurations tested since construction (atomic; read differences, see CounterScope in planners/planner.cpp).
   virtual std::uint64_t collisionChecks() const = 0;
   // Distance queries since construction (clearance, certified motion validation); 0 for checkers that
   // answer none.

@@ -18,7 +18,8 @@ LocalPlannerOptions LocalPlannerOptions::fromParameters(const cspace::ParameterS
   o.boundary_tolerance = params.getDouble("boundary_tolerance", o.boundary_tolerance, 0, 1e6);
   o.goal_radius = params.getDouble("goal_radius", o.goal_radius, 0, 1e6);
   o.eps = params.getDouble("eps", o.eps, 1e-15, 1);
-  o.labelling = params.getString("labelling", "balanced", {"balanced", "random"}) == "random"
+  const char* fallback = o.labelling == LabellingMethod::kRandom ? "random" : "balanced";
+  o.labelling = params.getString("labelling", fallback, {"balanced", "random"}) == "random"
                     ? LabellingMethod::kRandom
                     : LabellingMethod::kBalanced;
   o.sampling.link_resolution = params.getDouble("link_resolution", o.sampling.link_resolution, 1e-6, 1e6);

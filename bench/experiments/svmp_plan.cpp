@@ -55,5 +55,8 @@ int main(int argc, char** argv) {
   } catch (const std::runtime_error& e) {
     std::cerr << "svmp-plan: " << e.what() << "\n";
     return 2;
+  } catch (const std::length_error& e) {  // a segment the validator refuses to count (never "free")
+    std::cerr << "svmp-plan: " << options.scenario << ": " << e.what() << "\n";
+    return 2;
   }
 }
