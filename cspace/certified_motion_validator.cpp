@@ -41,13 +41,18 @@ bool CertifiedMotionValidator::prove(const Eigen::Ref<const Eigen::VectorXd>& a,
     if (!ok && !need_prefix) stack.clear();  // an end in contact fails at once
     while (!stack.empty()) {
       const Interval i = stack.back();
-      if (i.d0 + i.d1 > (i.t1 - i.t0) * length) {
+      // A right end closer than the tolerance (or outside the joint limits, which no ball covers)
+      // is never part of a proof: such an interval is only bisected, to push the proven prefix
+      // towards it.
+      const bool blocked = i.d1 <= tolerance_;
+      if (!blocked && i.d0 + i.d1 > (i.t1 - i.t0) * length) {
         stack.pop_back();
         proven = i.t1;
         continue;
       }
       const double mid = 0.5 * (i.t0 + i.t1);
-      if (queries >= kMaxDistanceQueries || !(mid > i.t0 && mid < i.t1)) {
+      if (queries >= kMaxDistanceQueries || !(mid > i.t0 && mid < i.t1) ||
+          (blocked && (i.t1 - i.t0) * length <= tolerance_)) {
         ok = false;
         break;
       }

@@ -35,12 +35,15 @@ class CollisionChecker final : public ValidityChecker {
     return checkImpl(q, true);
   }
   bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override;
-  // Minimum FCL distance; counts one distance query.
+  // Minimum FCL distance, as FCL reports it (its GJK may overestimate; see freeDistance); counts
+  // one distance query.
   double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
-  // The smallest FCL distance at q between the robot's links and the real obstacles, and between the
-  // non-adjacent link pairs kept for self-collision: a lower bound on how far any point of the robot
-  // may move before it can touch anything (0 when touching or penetrating, or outside joint limits).
-  // Counts one distance query. Used by the certified motion validator.
+  // A lower bound on the smallest distance at q between the robot's links and the real obstacles,
+  // and between the non-adjacent link pairs kept for self-collision: how far any point of the robot
+  // may move before it can touch anything (0 when touching or penetrating, or outside joint limits;
+  // +inf with nothing to hit). Each pair's value is a separating plane's
+  // (cspace/convex_distance.hpp), never FCL's distance taken on trust. Counts one distance query.
+  // Used by the certified motion validator.
   double freeDistance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
   std::uint64_t collisionChecks() const override { return checks_.load(std::memory_order_relaxed); }

@@ -62,9 +62,10 @@ DhArm::DhArm(DhArmSpec spec)
     shape.pose = to_flange * shape.pose;
     link_shapes_.back().push_back(shape);
   }
-  // Row k moves frame k's origin from frame k - 1's by a along x and d along the rotated z.
+  // Row k moves frame k's origin from frame k - 1's by a along x and d along the rotated z, which
+  // is perpendicular to x: by hypot(a, d) whatever the joint angles.
   std::vector<double> offsets(n, 0.0);
-  for (size_t k = 1; k < n; ++k) offsets[k] = std::abs(spec_.rows[k].a) + std::abs(spec_.rows[k].d);
+  for (size_t k = 1; k < n; ++k) offsets[k] = std::hypot(spec_.rows[k].a, spec_.rows[k].d);
   setChainReach(offsets);
   // Frame 1's origin never moves; frame k's origin is new when row k translates.
   for (size_t k = 1; k < n; ++k)

@@ -1,0 +1,141 @@
+#include "cspace/convex_distance.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace svmp::cspace {
+namespace {
+
+double sign(double x) { return x < 0 ? -1.0 : 1.0; }
+
+// Up to four points of A - B (GJK's simplex).
+struct Simplex {
+  std::array<Eigen::Vector3d, 4> p;
+  int n = 0;
+};
+
+// The point of the affine hull of the points idx[0..K] closest to the origin, with its barycentric
+// weights; false when the points are affinely dependent (a smaller subset covers that case).
+template <int K>
+bool projectOrigin(const Simplex& s, const int* idx, Eigen::Vector3d& x, double* w) {
+  Eigen::Matrix<double, 3, K> e;
+  for (int i = 0; i < K; ++i) e.col(i) = s.p[idx[i + 1]] - s.p[idx[0]];
+  const Eigen::Matrix<double, K, K> g = e.transpose() * e;
+  Eigen::FullPivLU<Eigen::Matrix<double, K, K>> lu(g);
+  lu.setThreshold(1e-12);
+  if (!lu.isInvertible()) return false;
+  const Eigen::Matrix<double, K, 1> lambda = lu.solve(-e.transpose() * s.p[idx[0]]);
+  x = s.p[idx[0]] + e * lambda;
+  w[0] = 1 - lambda.sum();
+  for (int i = 0; i < K; ++i) w[i + 1] = lambda[i];
+  return true;
+}
+
+// The point of conv(s) closest to the origin; s keeps only the points of the face holding it. Every
+// face is tried (at most 15): the closest point lies inside some face, where it is that face's
+// projection, and every projection with non-negative weights is a point of the hull.
+Eigen::Vector3d closestToOrigin(Simplex& s) {
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d closest = s.p[0];
+  int best_mask = 1;
+  for (int mask = 1; mask < (1 << s.n); ++mask) {
+    int idx[4], k = 0;
+    for (int i = 0; i < s.n; ++i)
+      if (mask & (1 << i)) idx[k++] = i;
+    Eigen::Vector3d x;
+    double w[4] = {1, 0, 0, 0};
+    bool ok = true;
+    switch (k) {
+      case 1:
+        x = s.p[idx[0]];
+        break;
+      case 2:
+        ok = projectOrigin<1>(s, idx, x, w);
+        break;
+      case 3:
+        ok = projectOrigin<2>(s, idx, x, w);
+        break;
+      default:
+        ok = projectOrigin<3>(s, idx, x, w);
+        break;
+    }
+    if (!ok || *std::min_element(w, w + k) < 0 || !(x.squaredNorm() < best)) continue;
+    best = x.squaredNorm();
+    closest = x;
+    best_mask = mask;
+  }
+  Simplex kept;
+  for (int i = 0; i < s.n; ++i)
+    if (best_mask & (1 << i)) kept.p[kept.n++] = s.p[i];
+  s = kept;
+  return closest;
+}
+
+}  // namespace
+
+Eigen::Vector3d supportPoint(const robots::Shape& s, const Eigen::Isometry3d& pose,
+                             const Eigen::Vector3d& u) {
+  const Eigen::Vector3d m = pose.linear().transpose() * u;  // u in the shape's frame
+  const double un = u.norm();
+  Eigen::Vector3d local = Eigen::Vector3d::Zero();
+  switch (s.kind) {
+    case robots::ShapeKind::kBox:
+      local = 0.5 * Eigen::Vector3d(sign(m.x()) * s.dims.x(), sign(m.y()) * s.dims.y(),
+                                    sign(m.z()) * s.dims.z());
+      break;
+    case robots::ShapeKind::kSphere:
+      if (un > 0) local = s.dims.x() * m / un;
+      break;
+    case robots::ShapeKind::kCapsule:
+      local = Eigen::Vector3d(0, 0, sign(m.z()) * 0.5 * s.dims.y());
+      if (un > 0) local += s.dims.x() * m / un;
+      break;
+    case robots::ShapeKind::kCylinder: {
+      const double radial = m.head<2>().norm();
+      local.z() = sign(m.z()) * 0.5 * s.dims.y();
+      if (radial > 0) local.head<2>() = s.dims.x() * m.head<2>() / radial;
+      break;
+    }
+  }
+  return pose * local;
+}
+
+double separationAlong(const robots::Shape& a, const Eigen::Isometry3d& pa, const robots::Shape& b,
+                       const Eigen::Isometry3d& pb, const Eigen::Vector3d& v) {
+  const double norm = v.norm();
+  if (!(norm > 0) || !std::isfinite(norm)) return -std::numeric_limits<double>::infinity();
+  // The point of A - B farthest along -v: s_A(-v) - s_B(v).
+  const Eigen::Vector3d w = supportPoint(a, pa, -v) - supportPoint(b, pb, v);
+  return v.dot(w) / norm;
+}
+
+double distanceLowerBound(const robots::Shape& a, const Eigen::Isometry3d& pa,
+                          const robots::Shape& b, const Eigen::Isometry3d& pb,
+                          const Eigen::Vector3d& hint, double rel_gap) {
+  Eigen::Vector3d v = hint;
+  if (!(v.norm() > 0) || !v.allFinite()) v = pa.translation() - pb.translation();
+  if (!(v.norm() > 0)) v = Eigen::Vector3d::UnitX();
+  double best = -std::numeric_limits<double>::infinity();
+  Simplex s;
+  for (int iteration = 0; iteration < 64; ++iteration) {
+    const Eigen::Vector3d w = supportPoint(a, pa, -v) - supportPoint(b, pb, v);
+    const double norm = v.norm();
+    best = std::max(best, v.dot(w) / norm);
+    // |v| bounds the distance from above once v is a point of the simplex (the hint need not be).
+    if (norm - best <= rel_gap * norm) break;
+    bool known = false;
+    for (int i = 0; i < s.n; ++i)
+      known = known || (s.p[i] - w).squaredNorm() <= 1e-28 * (1 + w.squaredNorm());
+    if (known || s.n == 4) break;  // no progress possible (numerical stall)
+    s.p[s.n++] = w;
+    v = closestToOrigin(s);
+    // The origin in the hull (or on it): A and B overlap; best is then <= 0 as well.
+    if (v.squaredNorm() <= 1e-30 || s.n == 4) break;
+  }
+  return best;
+}
+
+}  // namespace svmp::cspace

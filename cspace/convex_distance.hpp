@@ -1,0 +1,36 @@
+#pragma once
+// A certified lower bound on the distance between two placed FCL primitives, for certified motion
+// validation (cspace/certified_motion_validator.hpp). FCL 0.7's libccd GJK stops on slow progress
+// and then overestimates: by millimetres for box-capsule and cylinder pairs, and by up to half the
+// distance for thin coplanar boxes (planar arm links against a block: 0.73 reported for 0.48), so
+// its value cannot enter a proof. Any unit direction s gives the bound min over x in A - B of x . s
+// (a separating plane); this module evaluates it along FCL's own direction and, when that does not
+// confirm FCL's value, along the directions of a GJK run of its own (Gilbert, Johnson, Keerthi
+// 1988, with van den Bergen's lower-bound stop). A bug there can only loosen the bound: every value
+// returned is such a plane's separation, never a distance taken on trust. Positive means the shapes
+// are disjoint (one inside the other included).
+//
+// Thread safety: pure functions.
+#include <Eigen/Geometry>
+
+#include "robots/shape.hpp"
+
+namespace svmp::cspace {
+
+// The point of shape s farthest along u, s placed at `pose` (its world pose; s.pose is ignored).
+Eigen::Vector3d supportPoint(const robots::Shape& s, const Eigen::Isometry3d& pose,
+                             const Eigen::Vector3d& u);
+
+// min over x in A - B of x . v / |v| (a lower bound on dist(A, B); -inf for v = 0).
+double separationAlong(const robots::Shape& a, const Eigen::Isometry3d& pa, const robots::Shape& b,
+                       const Eigen::Isometry3d& pb, const Eigen::Vector3d& v);
+
+// The largest separation found: along `hint` (a vector of A - B, e.g. p_A - p_B from FCL's nearest
+// points), then along a GJK run until it is within `rel_gap` of the GJK upper bound, or after 64
+// iterations. <= the true distance; <= 0 when no separating plane was found (touching,
+// overlapping).
+double distanceLowerBound(const robots::Shape& a, const Eigen::Isometry3d& pa,
+                          const robots::Shape& b, const Eigen::Isometry3d& pb,
+                          const Eigen::Vector3d& hint, double rel_gap = 1e-6);
+
+}  // namespace svmp::cspace
