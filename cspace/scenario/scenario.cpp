@@ -1,12 +1,12 @@
 #include "cspace/scenario/scenario.hpp"
 
-#include <yaml-cpp/yaml.h>
-
+#include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <map>
 #include <numbers>
 #include <sstream>
 
+#include "cspace/scenario/yaml_reader.hpp"
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
 #include "robots/point_robot.hpp"
@@ -14,112 +14,48 @@
 namespace svmp::cspace {
 namespace {
 
+using scenario_yaml::KeyList;
+using scenario_yaml::num;
+using scenario_yaml::Reader;
+using L = ScenarioLimits;
+
 constexpr double kPi = std::numbers::pi;
 
-// A plain number, or a multiple of pi for angles: "pi", "-pi/2", "0.5pi", "2pi/3". False when the text
-// is anything else (trailing characters included).
-bool parseNumber(const std::string& s, double& v) {
-  if (s.empty()) return false;
-  const char* begin = s.c_str();
-  char* end = nullptr;
-  v = std::strtod(begin, &end);
-  if (*end == '\0') return end != begin;
-  double coefficient = v;
-  std::string rest(end);
-  if (end == begin) {  // no number before "pi", at most a sign
-    const bool sign = s[0] == '-' || s[0] == '+';
-    coefficient = s[0] == '-' ? -1 : 1;
-    rest = s.substr(sign ? 1 : 0);
-  }
-  if (rest.compare(0, 2, "pi") != 0) return false;
-  v = coefficient * kPi;
-  rest = rest.substr(2);
-  if (rest.empty()) return true;
-  if (rest[0] != '/') return false;
-  const char* denominator = rest.c_str() + 1;
-  const double d = std::strtod(denominator, &end);
-  if (end == denominator || *end != '\0') return false;
-  v /= d;
-  return true;
+std::string idx(const std::string& field, size_t i) { return field + "[" + std::to_string(i) + "]"; }
+
+// Lengths, widths, radii, box sides.
+double length(const Reader& r, const YAML::Node& n, const std::string& field) {
+  return r.inRange(n, field, L::kMinLength, L::kMaxLength, "m");
+}
+Eigen::VectorXd lengths(const Reader& r, const YAML::Node& n, const std::string& field, int size,
+                        size_t max_size = 3) {
+  return r.vector(n, field, size, L::kMinLength, L::kMaxLength, "m", max_size);
+}
+double angle(const Reader& r, const YAML::Node& n, const std::string& field) {
+  return r.inRange(n, field, -L::kMaxAngle, L::kMaxAngle, "rad");
+}
+double dhLength(const Reader& r, const YAML::Node& n, const std::string& field) {
+  return r.inRange(n, field, -L::kMaxDhLength, L::kMaxDhLength, "m");
+}
+Eigen::VectorXd position(const Reader& r, const YAML::Node& n, const std::string& field, int size) {
+  return r.vector(n, field, size, -L::kMaxCoordinate, L::kMaxCoordinate, "m", 3);
 }
 
-// Reads typed values from YAML nodes, naming "file: field 'path'" in every error.
-class Reader {
- public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
-
-  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
-    throw ScenarioError(source_ + ": field '" + field + "': " + what);
-  }
-  static std::string text(const YAML::Node& n) {
-    if (!n.IsDefined() || n.IsNull()) return "(missing)";
-    if (n.IsScalar()) return "'" + n.Scalar() + "'";
-    YAML::Emitter e;
-    e << YAML::Flow << n;
-    return e.c_str();
-  }
-  // field is the child's ("robot.type"); a parent that is not a mapping is reported under its own name.
-  YAML::Node require(const YAML::Node& parent, const std::string& key, const std::string& field) const {
-    requireMap(parent, parentField(field, key));
-    YAML::Node n = parent[key];
-    if (!n.IsDefined() || n.IsNull()) fail(field, "is required");
-    return n;
-  }
-  double number(const YAML::Node& n, const std::string& field) const {
-    if (!n.IsScalar()) fail(field, "expected a number, got " + text(n));
-    double v = 0;
-    if (!parseNumber(n.Scalar(), v)) fail(field, "expected a number, got " + text(n));
-    if (!std::isfinite(v)) fail(field, "expected a finite number, got " + text(n));
-    return v;
-  }
-  double positive(const YAML::Node& n, const std::string& field) const {
-    const double v = number(n, field);
-    if (!(v > 0)) fail(field, "must be positive, got " + text(n));
-    return v;
-  }
-  Eigen::VectorXd vector(const YAML::Node& n, const std::string& field, int size = -1) const {
-    if (!n.IsSequence()) fail(field, "expected a list of numbers, got " + text(n));
-    if (size >= 0 && static_cast<int>(n.size()) != size)
-      fail(field, "expected " + std::to_string(size) + " numbers, got " + std::to_string(n.size()) +
-                      ": " + text(n));
-    Eigen::VectorXd v(n.size());
-    for (size_t i = 0; i < n.size(); ++i) v[i] = number(n[i], field + "[" + std::to_string(i) + "]");
-    return v;
-  }
-  // yaml-cpp throws its own exception when a scalar or list is indexed by key: test first.
-  void requireMap(const YAML::Node& n, const std::string& field) const {
-    if (!n.IsMap()) fail(field, "expected a mapping {key: value}, got " + text(n));
-  }
-  static std::string parentField(const std::string& field, const std::string& key) {
-    const std::string suffix = "." + key;
-    if (field.size() > suffix.size() && field.compare(field.size() - suffix.size(), suffix.size(), suffix) == 0)
-      return field.substr(0, field.size() - suffix.size());
-    return field;
-  }
-  bool boolean(const YAML::Node& n, const std::string& field) const {
-    if (n.IsScalar() && (n.Scalar() == "true" || n.Scalar() == "false")) return n.Scalar() == "true";
-    fail(field, "expected true or false, got " + text(n));
-  }
-  std::string string(const YAML::Node& n, const std::string& field) const {
-    if (!n.IsScalar()) fail(field, "expected text, got " + text(n));
-    return n.Scalar();
-  }
-  const std::string& source() const { return source_; }
-
- private:
-  std::string source_;
-};
+const KeyList kPoseKeys = {"position", "rpy"};
+const KeyList kShapeKeys = {"shape", "size", "radius", "length", "position", "rpy"};
+const KeyList kObstacleKeys = {"name", "shape", "size", "radius", "length", "position", "rpy", "virtual", "weight", "sample"};
 
 Eigen::Isometry3d readPose(const Reader& r, const YAML::Node& n, const std::string& field) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   r.requireMap(n, field);
   if (n["position"]) {
-    Eigen::VectorXd p = r.vector(n["position"], field + ".position");
-    if (p.size() != 2 && p.size() != 3) r.fail(field + ".position", "expected 2 or 3 numbers, got " + Reader::text(n["position"]));
-    pose.translation().head(p.size()) = p;
+    const YAML::Node p = n["position"];
+    if (!p.IsSequence() || (p.size() != 2 && p.size() != 3))
+      r.fail(field + ".position", "expected 2 or 3 numbers, got " + Reader::text(p));
+    pose.translation().head(p.size()) = position(r, p, field + ".position", static_cast<int>(p.size()));
   }
   if (n["rpy"]) {
-    const Eigen::VectorXd rpy = r.vector(n["rpy"], field + ".rpy", 3);
+    const Eigen::VectorXd rpy = r.vector(n["rpy"], field + ".rpy", 3, -L::kMaxAngle, L::kMaxAngle, "rad");
     pose.linear() = (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
                      Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
                      Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX()))
@@ -128,129 +64,155 @@ Eigen::Isometry3d readPose(const Reader& r, const YAML::Node& n, const std::stri
   return pose;
 }
 
+// An obstacle or tool shape; its keys were checked against kShapeKeys (+ the obstacle's own) already.
 robots::Shape readShape(const Reader& r, const YAML::Node& n, const std::string& field) {
   const std::string kind = r.string(r.require(n, "shape", field + ".shape"), field + ".shape");
+  KeyList takes;
   robots::Shape s;
   if (kind == "box") {
-    s = robots::Shape::box(r.vector(r.require(n, "size", field + ".size"), field + ".size", 3));
-    for (int i = 0; i < 3; ++i)
-      if (!(s.dims[i] > 0)) r.fail(field + ".size", "sides must be positive, got " + Reader::text(n["size"]));
+    takes = {"size"};
+    s = robots::Shape::box(lengths(r, r.require(n, "size", field + ".size"), field + ".size", 3));
   } else if (kind == "sphere") {
-    s = robots::Shape::sphere(r.positive(r.require(n, "radius", field + ".radius"), field + ".radius"));
+    takes = {"radius"};
+    s = robots::Shape::sphere(length(r, r.require(n, "radius", field + ".radius"), field + ".radius"));
   } else if (kind == "cylinder" || kind == "capsule") {
-    const double radius = r.positive(r.require(n, "radius", field + ".radius"), field + ".radius");
-    const double length = r.positive(r.require(n, "length", field + ".length"), field + ".length");
-    s = kind == "cylinder" ? robots::Shape::cylinder(radius, length) : robots::Shape::capsule(radius, length);
+    takes = {"radius", "length"};
+    const double radius = length(r, r.require(n, "radius", field + ".radius"), field + ".radius");
+    const double len = length(r, r.require(n, "length", field + ".length"), field + ".length");
+    s = kind == "cylinder" ? robots::Shape::cylinder(radius, len) : robots::Shape::capsule(radius, len);
   } else {
-    r.fail(field + ".shape", "expected box, sphere, cylinder or capsule, got '" + kind + "'");
+    r.fail(field + ".shape", "expected box, sphere, cylinder or capsule, got " + Reader::text(n["shape"]));
   }
+  for (const char* key : {"size", "radius", "length"})
+    if (n[key] && std::find(takes.begin(), takes.end(), key) == takes.end())
+      r.fail(field + "." + key, "a " + kind + " does not take '" + key + "' (it takes: " + Reader::join(takes) + ")");
   s.pose = readPose(r, n, field);
   return s;
 }
 
 void readLimits(const Reader& r, const YAML::Node& n, const std::string& field, Eigen::VectorXd& lower,
                 Eigen::VectorXd& upper, int dof) {
-  lower = r.vector(r.require(n, "lower", field + ".lower"), field + ".lower", dof);
-  upper = r.vector(r.require(n, "upper", field + ".upper"), field + ".upper", dof);
+  r.checkKeys(n, field, {"lower", "upper"});
+  lower = r.vector(r.require(n, "lower", field + ".lower"), field + ".lower", dof, -L::kMaxCoordinate, L::kMaxCoordinate);
+  upper = r.vector(r.require(n, "upper", field + ".upper"), field + ".upper", dof, -L::kMaxCoordinate, L::kMaxCoordinate);
   for (int i = 0; i < dof; ++i)
     if (!(lower[i] < upper[i]))
-      r.fail(field, "joint " + std::to_string(i + 1) + " needs lower < upper, got [" +
-                        std::to_string(lower[i]) + ", " + std::to_string(upper[i]) + "]");
+      r.fail(field, "joint " + std::to_string(i + 1) + " needs lower < upper, got [" + num(lower[i]) + ", " +
+                        num(upper[i]) + "]");
+}
+
+const KeyList kPointKeys = {"type", "bounds", "radius"};
+const KeyList kPlanarKeys = {"type", "lengths", "widths", "limits", "base"};
+const KeyList kDhCommonKeys = {"type", "limits", "link_radius", "flange", "base", "tool", "tool_tip"};
+
+KeyList plus(KeyList a, const KeyList& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
 }
 
 std::shared_ptr<const robots::Robot> readRobot(const Reader& r, const YAML::Node& n) {
+  const KeyList all = plus(plus(plus(kPointKeys, kPlanarKeys), kDhCommonKeys), {"preset", "joints", "dh", "name"});
+  KeyList unique;
+  for (const auto& k : all)
+    if (std::find(unique.begin(), unique.end(), k) == unique.end()) unique.push_back(k);
+  r.checkKeys(n, "robot", unique);
   const std::string type = r.string(r.require(n, "type", "robot.type"), "robot.type");
   if (type == "point") {
+    r.checkKeys(n, "robot", kPointKeys, "a point robot", unique);
     const YAML::Node b = r.require(n, "bounds", "robot.bounds");
-    const Eigen::VectorXd lower = r.vector(r.require(b, "lower", "robot.bounds.lower"), "robot.bounds.lower");
-    if (lower.size() != 2 && lower.size() != 3)
-      r.fail("robot.bounds.lower", "a point robot has 2 or 3 dimensions, got " + Reader::text(b["lower"]));
+    r.checkKeys(b, "robot.bounds", {"lower", "upper"});
+    const YAML::Node lower = r.require(b, "lower", "robot.bounds.lower");
+    if (!lower.IsSequence() || (lower.size() != 2 && lower.size() != 3))
+      r.fail("robot.bounds.lower", "a point robot has 2 or 3 dimensions, got " + Reader::text(lower));
     Eigen::VectorXd lo, hi;
     readLimits(r, b, "robot.bounds", lo, hi, static_cast<int>(lower.size()));
-    const double radius = n["radius"] ? r.positive(n["radius"], "robot.radius") : 1e-6;
+    const double radius = n["radius"] ? length(r, n["radius"], "robot.radius") : 1e-6;
     return std::make_shared<robots::PointRobot>(lo, hi, radius);
   }
   if (type == "planar_arm") {
-    const Eigen::VectorXd lengths = r.vector(r.require(n, "lengths", "robot.lengths"), "robot.lengths");
-    const int dof = static_cast<int>(lengths.size());
-    if (dof == 0) r.fail("robot.lengths", "needs at least one link");
-    for (int i = 0; i < dof; ++i)
-      if (!(lengths[i] > 0)) r.fail("robot.lengths[" + std::to_string(i) + "]", "must be positive, got " + std::to_string(lengths[i]));
-    Eigen::VectorXd widths;
+    r.checkKeys(n, "robot", kPlanarKeys, "a planar_arm", unique);
+    const Eigen::VectorXd links = lengths(r, r.require(n, "lengths", "robot.lengths"), "robot.lengths", -1, L::kMaxJoints);
+    const int dof = static_cast<int>(links.size());
     const YAML::Node w = r.require(n, "widths", "robot.widths");
-    widths = w.IsScalar() ? Eigen::VectorXd::Constant(dof, r.positive(w, "robot.widths"))
-                          : r.vector(w, "robot.widths", dof);
-    for (int i = 0; i < dof; ++i)
-      if (!(widths[i] > 0)) r.fail("robot.widths[" + std::to_string(i) + "]", "must be positive, got " + std::to_string(widths[i]));
+    const Eigen::VectorXd widths = w.IsScalar() ? Eigen::VectorXd::Constant(dof, length(r, w, "robot.widths"))
+                                                : lengths(r, w, "robot.widths", dof);
     Eigen::VectorXd lo = Eigen::VectorXd::Constant(dof, -kPi), hi = Eigen::VectorXd::Constant(dof, kPi);
     if (n["limits"]) readLimits(r, n["limits"], "robot.limits", lo, hi, dof);
     Eigen::Vector2d base = Eigen::Vector2d::Zero();
-    if (n["base"]) base = r.vector(n["base"], "robot.base", 2);
-    return std::make_shared<robots::PlanarArm>(
-        std::vector<double>(lengths.data(), lengths.data() + dof),
-        std::vector<double>(widths.data(), widths.data() + dof), lo, hi, base);
+    if (n["base"]) base = position(r, n["base"], "robot.base", 2);
+    return std::make_shared<robots::PlanarArm>(std::vector<double>(links.data(), links.data() + dof),
+                                               std::vector<double>(widths.data(), widths.data() + dof), lo, hi, base);
   }
-  if (type == "dh_arm") {
-    robots::DhArmSpec spec;
-    if (n["preset"]) {
-      const std::string preset = r.string(n["preset"], "robot.preset");
-      if (preset == "crs_f3") {
-        const int joints = n["joints"] ? static_cast<int>(r.number(n["joints"], "robot.joints")) : 6;
-        if (joints != 3 && joints != 6) r.fail("robot.joints", "crs_f3 has 3 (simplified) or 6 joints, got " + Reader::text(n["joints"]));
-        spec = robots::crsF3Spec(joints);
-      } else if (preset == "panda") {
-        spec = robots::pandaSpec();
-      } else {
-        r.fail("robot.preset", "expected crs_f3 or panda, got '" + preset + "'");
-      }
+  if (type != "dh_arm") r.fail("robot.type", "expected point, planar_arm or dh_arm, got " + Reader::text(n["type"]));
+  robots::DhArmSpec spec;
+  if (n["preset"]) {
+    const std::string preset = r.string(n["preset"], "robot.preset");
+    if (preset == "crs_f3") {
+      r.checkKeys(n, "robot", plus(kDhCommonKeys, {"preset", "joints"}), "the crs_f3 preset", unique);
+      const long joints = n["joints"] ? r.integer(n["joints"], "robot.joints", 1, L::kMaxJoints) : 6;
+      if (joints != 3 && joints != 6)
+        r.fail("robot.joints", "crs_f3 has 3 (simplified) or 6 joints, got " + Reader::text(n["joints"]));
+      spec = robots::crsF3Spec(static_cast<int>(joints));
+    } else if (preset == "panda") {
+      r.checkKeys(n, "robot", plus(kDhCommonKeys, {"preset"}), "the panda preset", unique);
+      spec = robots::pandaSpec();
     } else {
-      const YAML::Node dh = r.require(n, "dh", "robot.dh");
-      if (!dh.IsSequence() || dh.size() == 0) r.fail("robot.dh", "expected a list of rows {a, alpha, d, offset}");
-      for (size_t i = 0; i < dh.size(); ++i) {
-        const std::string f = "robot.dh[" + std::to_string(i) + "]";
-        r.requireMap(dh[i], f);
-        robots::DhRow row;
-        row.a = dh[i]["a"] ? r.number(dh[i]["a"], f + ".a") : 0;
-        row.alpha = dh[i]["alpha"] ? r.number(dh[i]["alpha"], f + ".alpha") : 0;
-        row.d = dh[i]["d"] ? r.number(dh[i]["d"], f + ".d") : 0;
-        row.offset = dh[i]["offset"] ? r.number(dh[i]["offset"], f + ".offset") : 0;
-        spec.rows.push_back(row);
-      }
-      spec.name = n["name"] ? r.string(n["name"], "robot.name") : "dh_arm";
-      spec.link_radius.assign(spec.rows.size(), 0.05);
-      readLimits(r, r.require(n, "limits", "robot.limits"), "robot.limits", spec.lower, spec.upper,
-                 static_cast<int>(spec.rows.size()));
+      r.fail("robot.preset", "expected crs_f3 or panda, got " + Reader::text(n["preset"]));
     }
-    const int dof = static_cast<int>(spec.rows.size());
-    if (n["limits"] && n["preset"]) readLimits(r, n["limits"], "robot.limits", spec.lower, spec.upper, dof);
-    if (n["link_radius"]) {
-      const Eigen::VectorXd radius = r.vector(n["link_radius"], "robot.link_radius", dof);
-      for (int i = 0; i < dof; ++i)
-        if (!(radius[i] > 0)) r.fail("robot.link_radius[" + std::to_string(i) + "]", "must be positive, got " + std::to_string(radius[i]));
-      spec.link_radius.assign(radius.data(), radius.data() + dof);
+    if (n["limits"])
+      readLimits(r, n["limits"], "robot.limits", spec.lower, spec.upper, static_cast<int>(spec.rows.size()));
+  } else {
+    r.checkKeys(n, "robot", plus(kDhCommonKeys, {"dh", "name"}), "a dh_arm with a dh table", unique);
+    const YAML::Node dh = r.require(n, "dh", "robot.dh");
+    r.requireList(dh, "robot.dh", L::kMaxJoints, "rows {a, alpha, d, offset}");
+    if (dh.size() == 0) r.fail("robot.dh", "needs at least one row {a, alpha, d, offset}");
+    for (size_t i = 0; i < dh.size(); ++i) {
+      const std::string f = idx("robot.dh", i);
+      r.checkKeys(dh[i], f, {"a", "alpha", "d", "offset"});
+      robots::DhRow row;
+      row.a = dh[i]["a"] ? dhLength(r, dh[i]["a"], f + ".a") : 0;
+      row.alpha = dh[i]["alpha"] ? angle(r, dh[i]["alpha"], f + ".alpha") : 0;
+      row.d = dh[i]["d"] ? dhLength(r, dh[i]["d"], f + ".d") : 0;
+      row.offset = dh[i]["offset"] ? angle(r, dh[i]["offset"], f + ".offset") : 0;
+      spec.rows.push_back(row);
     }
-    if (n["flange"]) {
-      const YAML::Node f = n["flange"];
-      r.requireMap(f, "robot.flange");
-      spec.flange.a = f["a"] ? r.number(f["a"], "robot.flange.a") : 0;
-      spec.flange.alpha = f["alpha"] ? r.number(f["alpha"], "robot.flange.alpha") : 0;
-      spec.flange.d = f["d"] ? r.number(f["d"], "robot.flange.d") : 0;
-    }
-    if (n["base"]) spec.base = readPose(r, n["base"], "robot.base");
-    if (n["tool"]) {
-      if (!n["tool"].IsSequence()) r.fail("robot.tool", "expected a list of shapes");
-      for (size_t i = 0; i < n["tool"].size(); ++i)
-        spec.tool.push_back(readShape(r, n["tool"][i], "robot.tool[" + std::to_string(i) + "]"));
-    }
-    if (n["tool_tip"]) spec.tool_tip = r.vector(n["tool_tip"], "robot.tool_tip", 3);
-    return std::make_shared<robots::DhArm>(spec);
+    spec.name = n["name"] ? r.string(n["name"], "robot.name") : "dh_arm";
+    if (spec.name.empty()) r.fail("robot.name", "must not be empty");
+    spec.link_radius.assign(spec.rows.size(), 0.05);
+    readLimits(r, r.require(n, "limits", "robot.limits"), "robot.limits", spec.lower, spec.upper,
+               static_cast<int>(spec.rows.size()));
   }
-  r.fail("robot.type", "expected point, planar_arm or dh_arm, got '" + type + "'");
+  const int dof = static_cast<int>(spec.rows.size());
+  if (n["link_radius"]) {
+    const Eigen::VectorXd radius = lengths(r, n["link_radius"], "robot.link_radius", dof);
+    spec.link_radius.assign(radius.data(), radius.data() + dof);
+  }
+  if (n["flange"]) {
+    const YAML::Node f = n["flange"];
+    r.checkKeys(f, "robot.flange", {"a", "alpha", "d"});
+    spec.flange.a = f["a"] ? dhLength(r, f["a"], "robot.flange.a") : 0;
+    spec.flange.alpha = f["alpha"] ? angle(r, f["alpha"], "robot.flange.alpha") : 0;
+    spec.flange.d = f["d"] ? dhLength(r, f["d"], "robot.flange.d") : 0;
+  }
+  if (n["base"]) {
+    r.checkKeys(n["base"], "robot.base", kPoseKeys);
+    spec.base = readPose(r, n["base"], "robot.base");
+  }
+  if (n["tool"]) {
+    const YAML::Node tool = n["tool"];
+    r.requireList(tool, "robot.tool", L::kMaxToolShapes, "shapes");
+    for (size_t i = 0; i < tool.size(); ++i) {
+      r.checkKeys(tool[i], idx("robot.tool", i), kShapeKeys);
+      spec.tool.push_back(readShape(r, tool[i], idx("robot.tool", i)));
+    }
+  }
+  if (n["tool_tip"]) spec.tool_tip = position(r, n["tool_tip"], "robot.tool_tip", 3);
+  return std::make_shared<robots::DhArm>(spec);
 }
 
 Eigen::VectorXd readConfiguration(const Reader& r, const YAML::Node& n, const std::string& field,
                                   const robots::Robot& robot) {
-  const Eigen::VectorXd q = r.vector(n, field, robot.dof());
+  const Eigen::VectorXd q = r.vector(n, field, robot.dof(), -L::kMaxCoordinate, L::kMaxCoordinate);
   if (!robot.withinLimits(q)) {
     std::ostringstream v;
     v << "[" << q.transpose() << "]";
@@ -259,8 +221,132 @@ Eigen::VectorXd readConfiguration(const Reader& r, const YAML::Node& n, const st
   return q;
 }
 
-std::string scalarText(const YAML::Node& n) {
-  return n.IsScalar() ? n.Scalar() : Reader::text(n);
+std::vector<Obstacle> readObstacles(const Reader& r, const YAML::Node& list, const robots::Robot& robot) {
+  r.requireList(list, "obstacles", L::kMaxObstacles, "obstacles");
+  std::vector<Obstacle> obstacles;
+  std::map<std::string, size_t> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string f = idx("obstacles", i);
+    const YAML::Node o_node = list[i];
+    r.checkKeys(o_node, f, kObstacleKeys);
+    Obstacle o;
+    o.name = o_node["name"] ? r.string(o_node["name"], f + ".name") : "obstacle" + std::to_string(i + 1);
+    if (o.name.empty()) r.fail(f + ".name", "must not be empty");
+    if (const auto [it, fresh] = names.emplace(o.name, i); !fresh)
+      r.fail(f + ".name", "duplicate obstacle name '" + o.name + "' (also " + idx("obstacles", it->second) + ")");
+    o.shape = readShape(r, o_node, f);
+    if (robot.workspaceDim() == 2 && std::abs(o.shape.pose.translation().z()) > 0 &&
+        o.shape.kind == robots::ShapeKind::kBox && 0.5 * o.shape.dims.z() < std::abs(o.shape.pose.translation().z()))
+      r.fail(f + ".position", "a planar robot moves in z = 0; this obstacle does not reach it");
+    o.is_virtual = o_node["virtual"] ? r.boolean(o_node["virtual"], f + ".virtual") : false;
+    o.weight = o_node["weight"] ? r.positiveAtMost(o_node["weight"], f + ".weight", L::kMaxWeight) : 1.0;
+    if (o_node["sample"]) o.root_sample = readConfiguration(r, o_node["sample"], f + ".sample", robot);
+    obstacles.push_back(std::move(o));
+  }
+  return obstacles;
+}
+
+void readWitness(const Reader& r, const YAML::Node& n, const std::string& f, const robots::Robot& robot, Query& q) {
+  if (!n) return;
+  r.requireList(n, f, L::kMaxWitnessWaypoints, "configurations (waypoints)");
+  q.witness.reserve(n.size());
+  for (size_t i = 0; i < n.size(); ++i) q.witness.push_back(readConfiguration(r, n[i], idx(f, i), robot));
+}
+
+std::vector<Query> readQueries(const Reader& r, const YAML::Node& root, const robots::Robot& robot) {
+  std::vector<Query> queries;
+  if (!root["queries"]) {
+    queries.push_back({readConfiguration(r, r.require(root, "start", "start"), "start", robot),
+                       readConfiguration(r, r.require(root, "goal", "goal"), "goal", robot), {}});
+    readWitness(r, root["witness"], "witness", robot, queries.back());
+    return queries;
+  }
+  for (const char* key : {"start", "goal", "witness"})
+    if (root[key]) r.fail(key, "give either queries or top-level start/goal/witness, not both");
+  const YAML::Node list = root["queries"];
+  r.requireList(list, "queries", L::kMaxQueries, "{start, goal, witness?}");
+  if (list.size() == 0) r.fail("queries", "expected a non-empty list of {start, goal}");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string f = idx("queries", i);
+    r.checkKeys(list[i], f, {"start", "goal", "witness"});
+    queries.push_back({readConfiguration(r, r.require(list[i], "start", f + ".start"), f + ".start", robot),
+                       readConfiguration(r, r.require(list[i], "goal", f + ".goal"), f + ".goal", robot), {}});
+    readWitness(r, list[i]["witness"], f + ".witness", robot, queries.back());
+  }
+  return queries;
+}
+
+// The resolution, bounded so that a segment across the whole C-space needs at most kMaxChecksPerDiagonal checks.
+double readResolution(const Reader& r, const YAML::Node& n, const robots::Robot& robot, const Eigen::VectorXd& w) {
+  const double resolution = r.inRange(n, "resolution", L::kMinResolution, L::kMaxResolution);
+  const Eigen::ArrayXd range = (robot.upperLimits() - robot.lowerLimits()).array();
+  const double diagonal = std::sqrt((w.array() * range.square()).sum());
+  if (!(diagonal / resolution <= L::kMaxChecksPerDiagonal)) {
+    std::ostringstream weights;
+    weights << "[" << w.transpose() << "]";
+    r.fail("resolution", Reader::text(n) + " needs " + num(diagonal / resolution) +
+                             " checks for a segment across the C-space diagonal (weighted length " + num(diagonal) +
+                             " with metric_weights " + weights.str() + "); at most 2^30 = " +
+                             num(L::kMaxChecksPerDiagonal) + " are allowed: raise resolution to at least " +
+                             num(diagonal / L::kMaxChecksPerDiagonal));
+  }
+  return resolution;
+}
+
+Scenario parseScenarioUnguarded(const std::string& yaml_text, const std::string& source) {
+  Reader r(source);
+  const YAML::Node root = scenario_yaml::loadSingleDocument(yaml_text, source);
+  if (!root.IsMap())
+    throw ScenarioError(source + ": expected a YAML mapping at the top level, got " +
+                        (root.IsNull() ? std::string("an empty document") : Reader::text(root)));
+  r.checkKeys(root, "", {"name", "description", "robot", "obstacles", "start", "goal", "queries", "witness",
+                         "resolution", "metric_weights", "self_collision", "planners"});
+
+  Scenario s;
+  s.path = source;
+  s.name = root["name"] ? r.string(root["name"], "name") : source;  // unchanged: writers escape it
+  s.description = root["description"] ? r.string(root["description"], "description") : "";
+  try {
+    s.robot = readRobot(r, r.require(root, "robot", "robot"));
+  } catch (const std::invalid_argument& e) {
+    throw ScenarioError(source + ": field 'robot': " + e.what());
+  }
+  const int dof = s.robot->dof();
+  try {
+    s.environment = std::make_shared<Environment>(
+        root["obstacles"] ? readObstacles(r, root["obstacles"], *s.robot) : std::vector<Obstacle>{});
+  } catch (const std::invalid_argument& e) {
+    throw ScenarioError(source + ": field 'obstacles': " + e.what());
+  }
+  s.queries = readQueries(r, root, *s.robot);
+  s.metric_weights = Eigen::VectorXd::Ones(dof);
+  if (const YAML::Node w = root["metric_weights"]) {
+    if (!w.IsSequence() || w.size() != static_cast<size_t>(dof))
+      r.fail("metric_weights", "expected " + std::to_string(dof) + " numbers, got " + Reader::text(w));
+    for (int i = 0; i < dof; ++i) s.metric_weights[i] = r.positiveAtMost(w[i], idx("metric_weights", i), L::kMaxWeight);
+  }
+  s.resolution = readResolution(r, r.require(root, "resolution", "resolution"), *s.robot, s.metric_weights);
+  s.self_collision = root["self_collision"] ? r.boolean(root["self_collision"], "self_collision") : true;
+
+  if (root["planners"]) {
+    const YAML::Node planners = root["planners"];
+    if (!planners.IsMap()) r.fail("planners", "expected a mapping planner -> {key: value}, got " + Reader::text(planners));
+    r.checkKeys(planners, "planners", {});  // planner names: duplicates; unknown ones are the planners' call
+    for (const auto& planner : planners) {
+      const std::string name = planner.first.Scalar();
+      if (!planner.second.IsMap())
+        r.fail("planners." + name, "expected a mapping key -> value, got " + Reader::text(planner.second));
+      r.checkKeys(planner.second, "planners." + name, {});  // keys: ParameterSet reports unused ones
+      std::map<std::string, std::string> values;
+      for (const auto& kv : planner.second) {
+        if (!kv.second.IsScalar())
+          r.fail("planners." + name + "." + kv.first.Scalar(), "expected a single value, got " + Reader::text(kv.second));
+        values[kv.first.Scalar()] = kv.second.Scalar();
+      }
+      s.planner_params.emplace(name, ParameterSet(source, "planners." + name + ".", values));
+    }
+  }
+  return s;
 }
 
 }  // namespace
@@ -275,123 +361,18 @@ ParameterSet Scenario::paramsFor(const std::string& planner) const {
   return ParameterSet(path, "planners." + planner + ".", {});
 }
 
-namespace {
-
-Scenario parseScenarioUnguarded(const std::string& yaml_text, const std::string& source) {
-  Reader r(source);
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw ScenarioError(source + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) +
-                        ": " + e.msg);
-  }
-  if (!root.IsMap()) throw ScenarioError(source + ": expected a YAML mapping at the top level");
-  static const std::set<std::string> known = {"name", "description", "robot", "obstacles", "start", "goal",
-                                              "queries", "witness", "resolution", "metric_weights",
-                                              "self_collision", "planners"};
-  for (const auto& kv : root)
-    if (!known.count(kv.first.Scalar())) r.fail(kv.first.Scalar(), "unknown field");
-
-  Scenario s;
-  s.path = source;
-  s.name = root["name"] ? r.string(root["name"], "name") : source;
-  s.description = root["description"] ? r.string(root["description"], "description") : "";
-  try {
-    s.robot = readRobot(r, r.require(root, "robot", "robot"));
-  } catch (const std::invalid_argument& e) {
-    throw ScenarioError(source + ": field 'robot': " + e.what());
-  }
-  const int dof = s.robot->dof();
-
-  std::vector<Obstacle> obstacles;
-  if (root["obstacles"]) {
-    const YAML::Node list = root["obstacles"];
-    if (!list.IsSequence()) r.fail("obstacles", "expected a list");
-    for (size_t i = 0; i < list.size(); ++i) {
-      const std::string f = "obstacles[" + std::to_string(i) + "]";
-      r.requireMap(list[i], f);
-      Obstacle o;
-      o.name = list[i]["name"] ? r.string(list[i]["name"], f + ".name") : "";
-      o.shape = readShape(r, list[i], f);
-      if (s.robot->workspaceDim() == 2 && std::abs(o.shape.pose.translation().z()) > 0 &&
-          o.shape.kind == robots::ShapeKind::kBox && 0.5 * o.shape.dims.z() < std::abs(o.shape.pose.translation().z()))
-        r.fail(f + ".position", "a planar robot moves in z = 0; this obstacle does not reach it");
-      o.is_virtual = list[i]["virtual"] ? r.boolean(list[i]["virtual"], f + ".virtual") : false;
-      o.weight = list[i]["weight"] ? r.positive(list[i]["weight"], f + ".weight") : 1.0;
-      if (list[i]["sample"]) o.root_sample = readConfiguration(r, list[i]["sample"], f + ".sample", *s.robot);
-      obstacles.push_back(std::move(o));
-    }
-  }
-  s.environment = std::make_shared<Environment>(std::move(obstacles));
-
-  if (root["queries"]) {
-    const YAML::Node list = root["queries"];
-    if (!list.IsSequence() || list.size() == 0) r.fail("queries", "expected a non-empty list of {start, goal}");
-    for (size_t i = 0; i < list.size(); ++i) {
-      const std::string f = "queries[" + std::to_string(i) + "]";
-      s.queries.push_back({readConfiguration(r, r.require(list[i], "start", f + ".start"), f + ".start", *s.robot),
-                           readConfiguration(r, r.require(list[i], "goal", f + ".goal"), f + ".goal", *s.robot), {}});
-    }
-  } else {
-    s.queries.push_back({readConfiguration(r, r.require(root, "start", "start"), "start", *s.robot),
-                         readConfiguration(r, r.require(root, "goal", "goal"), "goal", *s.robot), {}});
-  }
-  auto readWitness = [&](const YAML::Node& n, const std::string& f, Query& q) {
-    if (!n) return;
-    if (!n.IsSequence()) r.fail(f, "expected a list of configurations");
-    for (size_t i = 0; i < n.size(); ++i)
-      q.witness.push_back(readConfiguration(r, n[i], f + "[" + std::to_string(i) + "]", *s.robot));
-  };
-  if (root["queries"]) {
-    for (size_t i = 0; i < s.queries.size(); ++i)
-      readWitness(root["queries"][i]["witness"], "queries[" + std::to_string(i) + "].witness", s.queries[i]);
-  } else {
-    readWitness(root["witness"], "witness", s.queries[0]);
-  }
-
-  s.resolution = r.positive(r.require(root, "resolution", "resolution"), "resolution");
-  s.metric_weights = root["metric_weights"] ? r.vector(root["metric_weights"], "metric_weights", dof)
-                                            : Eigen::VectorXd::Ones(dof);
-  for (int i = 0; i < dof; ++i)
-    if (!(s.metric_weights[i] > 0))
-      r.fail("metric_weights[" + std::to_string(i) + "]", "must be positive, got " + std::to_string(s.metric_weights[i]));
-  s.self_collision = root["self_collision"] ? r.boolean(root["self_collision"], "self_collision") : true;
-
-  if (root["planners"]) {
-    if (!root["planners"].IsMap()) r.fail("planners", "expected a mapping planner -> {key: value}");
-    for (const auto& planner : root["planners"]) {
-      const std::string name = planner.first.Scalar();
-      if (!planner.second.IsMap()) r.fail("planners." + name, "expected a mapping key -> value");
-      std::map<std::string, std::string> values;
-      for (const auto& kv : planner.second) {
-        if (!kv.second.IsScalar())
-          r.fail("planners." + name + "." + kv.first.Scalar(), "expected a single value, got " + scalarText(kv.second));
-        values[kv.first.Scalar()] = kv.second.Scalar();
-      }
-      s.planner_params.emplace(name, ParameterSet(source, "planners." + name + ".", values));
-    }
-  }
-  return s;
-}
-
-}  // namespace
-
 Scenario parseScenario(const std::string& yaml_text, const std::string& source) {
   try {
     return parseScenarioUnguarded(yaml_text, source);
   } catch (const YAML::Exception& e) {
     // Last line of defence for a node kind the reader did not test first: still name the file and line.
-    throw ScenarioError(source + ": line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    throw ScenarioError(source + ": line " + std::to_string(e.mark.line + 1) + ", column " +
+                        std::to_string(e.mark.column + 1) + ": " + e.msg);
   }
 }
 
 Scenario loadScenario(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ScenarioError(path + ": cannot open the file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseScenario(text.str(), path);
+  return parseScenario(scenario_yaml::readScenarioFile(path), path);
 }
 
 }  // namespace svmp::cspace
