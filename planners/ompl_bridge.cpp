@@ -197,6 +197,8 @@ class OmplPlanner final : public Planner {
                           : PlanStatus::kFailed;
       result.message = std::string("OMPL: ") + status.asString();
     }
+    // OMPL 1.5's LazyPRM frees its roadmap's states in clear(), not in its destructor.
+    planner->clear();
   }
 
   std::string name_;
