@@ -1,3 +1,7 @@
+// Vectors wider than the baseline ISA are only used inside target("avx2") functions (and in the
+// always-inlined exponential of svm/fast_exp.hpp they call), so no ABI for them is ever used.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "svm/simd_loops.hpp"
 
 #include <algorithm>
@@ -5,9 +9,6 @@
 #include <limits>
 
 #include "svm/kernel.hpp"
-
-// Vectors wider than the baseline ISA are only used inside target("avx2") functions.
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace svmp::svm::loops {
 
