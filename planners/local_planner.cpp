@@ -49,6 +49,11 @@ LocalPlanner::LocalPlanner(const PlanningContext& context, LocalPlannerOptions o
 }
 
 void LocalPlanner::clear() {
+  forgetBuild();
+  clearQuery();
+}
+
+void LocalPlanner::clearQuery() {
   samples_ = {};
   labelling_ = {};
   labelled_ = {};

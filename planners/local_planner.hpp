@@ -49,7 +49,7 @@ class LocalPlanner final : public Planner {
   LocalPlanner(const PlanningContext& context, LocalPlannerOptions options);
   std::string name() const override { return "local"; }
   void clear() override;
-  void clearQuery() override { clear(); }
+  void clearQuery() override;  // the samples, labels and model belong to one query
   PlannerView view() const override { return {&labelled_, risk(), nullptr}; }
 
   const IkSamples& samples() const { return samples_; }

@@ -131,7 +131,7 @@ class OmplPlanner final : public Planner {
   OmplPlanner(std::string name, const PlanningContext& context, OmplOptions options)
       : Planner(context), name_(std::move(name)), options_(options) {}
   std::string name() const override { return name_; }
-  void clear() override {}
+  void clear() override { forgetBuild(); }
 
  protected:
   void buildRoadmap(std::uint64_t, const Termination&, PlanResult& result) override {

@@ -145,7 +145,14 @@ TEST(Seams, LocalPlannerHonoursTheTimeLimit) {
   std::ifstream file(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig2_6.yaml");
   const std::string yaml((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   auto w = makeWorld(yaml);
-  ASSERT_TRUE(w->planner("local")->solve(w->query(), 1).solved());
+  auto local = w->planner("local");
+  ASSERT_TRUE(local->solve(w->query(), 1).solved());
+  // Nothing to build ahead, and each query starts from its own samples.
+  ASSERT_TRUE(local->build(1).solved());
+  EXPECT_TRUE(local->query(w->query(), 1).solved());
+  EXPECT_TRUE(local->query(w->query(), 1).solved());
+  local->clear();
+  EXPECT_THROW(local->query(w->query(), 1), std::logic_error);
   const PlanResult r = w->planner("local")->solve(w->query(), 1, Termination::when([] { return true; }));
   EXPECT_EQ(r.status, PlanStatus::kTimeout) << planStatusName(r.status) << " " << r.message;
 }
