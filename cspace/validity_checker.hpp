@@ -7,6 +7,7 @@
 // Thread safety: implementations make every const method safe to call from many threads at once.
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 
 #include "cspace/environment.hpp"
 #include "robots/robot.hpp"
@@ -16,6 +17,15 @@ namespace svmp::cspace {
 inline constexpr int kFree = 0;
 inline constexpr int kJointLimitHit = -1;
 inline constexpr int kSelfCollisionHit = -2;
+
+// What a check() result means, for messages: "free", "outside the joint limits", "in self-collision"
+// or "in collision with obstacle 'NAME'".
+inline std::string describeHit(const Environment& env, int hit) {
+  if (hit == kFree) return "free";
+  if (hit == kJointLimitHit) return "outside the joint limits";
+  if (hit == kSelfCollisionHit) return "in self-collision";
+  return "in collision with obstacle '" + env.byId(hit).name + "'";
+}
 
 class ValidityChecker {
  public:

@@ -127,8 +127,9 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, const Termination& 
     const Eigen::VectorXd q_next = next.cwiseQuotient(scale);
     if (const int hit = context_.checker.check(q_next);
         hit != cspace::kFree || !context_.validator.isValid(q_prev, q_next)) {
-      result.message = hit > 0 ? "a descent step entered obstacle '" + context_.checker.environment().byId(hit).name + "'"
-                               : "a descent step left the free space (hit " + std::to_string(hit) + ")";
+      result.message = hit != cspace::kFree
+                           ? "a descent step ended " + cspace::describeHit(context_.checker.environment(), hit)
+                           : "a descent step crossed an obstacle between two free configurations";
       return PlanStatus::kFailed;
     }
     x = next;

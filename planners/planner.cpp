@@ -43,16 +43,6 @@ const char* planStatusName(PlanStatus status) {
   return "?";
 }
 
-namespace {
-
-std::string hitName(const cspace::ValidityChecker& checker, int hit) {
-  if (hit == cspace::kJointLimitHit) return "outside the joint limits";
-  if (hit == cspace::kSelfCollisionHit) return "in self-collision";
-  return "in collision with obstacle '" + checker.environment().byId(hit).name + "'";
-}
-
-}  // namespace
-
 bool checkEndpoints(const PlanningContext& context, const cspace::Query& query, PlanResult& result) {
   if (query.start.size() != context.space.dim() || query.goal.size() != context.space.dim()) {
     result.status = PlanStatus::kInvalidInput;
@@ -61,12 +51,12 @@ bool checkEndpoints(const PlanningContext& context, const cspace::Query& query, 
   }
   if (const int hit = context.checker.check(query.start); hit != cspace::kFree) {
     result.status = PlanStatus::kInvalidStart;
-    result.message = "start is " + hitName(context.checker, hit);
+    result.message = "start is " + cspace::describeHit(context.checker.environment(), hit);
     return false;
   }
   if (const int hit = context.checker.check(query.goal); hit != cspace::kFree) {
     result.status = PlanStatus::kInvalidGoal;
-    result.message = "goal is " + hitName(context.checker, hit);
+    result.message = "goal is " + cspace::describeHit(context.checker.environment(), hit);
     return false;
   }
   return true;

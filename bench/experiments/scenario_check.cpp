@@ -8,13 +8,6 @@
 namespace svmp::experiments {
 namespace {
 
-std::string hitName(const cspace::Environment& env, int hit) {
-  if (hit == cspace::kFree) return "free";
-  if (hit == cspace::kJointLimitHit) return "outside joint limits";
-  if (hit == cspace::kSelfCollisionHit) return "self-collision";
-  return "in collision with '" + env.byId(hit).name + "'";
-}
-
 std::string format(const Eigen::VectorXd& q) {
   std::ostringstream s;
   s << std::setprecision(4) << "[";
@@ -52,7 +45,7 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
     for (const auto& [label, config] : {std::pair{"start", &q.start}, std::pair{"goal ", &q.goal}}) {
       const int hit = checker.check(*config);
       ok &= hit == cspace::kFree;
-      out << "query " << i << "    " << label << " " << format(*config) << "  " << hitName(env, hit);
+      out << "query " << i << "    " << label << " " << format(*config) << "  " << cspace::describeHit(env, hit);
       if (hit == cspace::kFree) out << ", clearance " << std::setprecision(4) << checker.clearance(*config);
       out << "\n";
     }
