@@ -68,7 +68,6 @@ class Planner {
 
   virtual PlannerView view() const { return {}; }
   bool built() const { return built_; }
-  const PlanningContext& context() const { return context_; }
 
  protected:
   // The planner's steps; the base class counts checks and calls around them and checks the query's

@@ -51,8 +51,8 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
     const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {
       return context.space.distance(roadmap.node(v), goal);
     });
-    int disproved = -1;
-    for (size_t i = 0; context.certifier && i + 1 < nodes.size() && disproved < 0; ++i) {
+    bool disproved = false;
+    for (size_t i = 0; context.certifier && i + 1 < nodes.size() && !disproved; ++i) {
       const int u = nodes[i], v = nodes[i + 1];
       if (roadmap.isCertified(u, v)) continue;
       const auto t0 = Clock::now();
@@ -60,12 +60,9 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
       out.certify_ms += msSince(t0);
       free ? roadmap.markCertified(u, v) : roadmap.removeEdge(u, v);
       if (u < shared && v < shared) free ? milestones->markCertified(u, v) : milestones->removeEdge(u, v);
-      if (!free) disproved = static_cast<int>(i);
+      disproved = !free;
     }
-    if (disproved >= 0) {
-      ++out.disproved_edges;
-      continue;
-    }
+    if (disproved) continue;
     for (int v : nodes) out.path.push_back(roadmap.node(v));
     out.certified = context.certifier != nullptr;
     break;

@@ -18,7 +18,6 @@ struct QueryOutcome {
   std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected
   int start_node = -1, goal_node = -1;  // their indices in the query roadmap
   bool certified = false;             // every edge of the path proven free by context.certifier
-  int disproved_edges = 0;            // edges certification removed (lazy repair)
   double certify_ms = 0;              // time spent proving edges
 };
 

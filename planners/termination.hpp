@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -38,11 +37,6 @@ class Termination {
   bool operator()() const { return (deadline_ && Clock::now() >= *deadline_) || (condition_ && condition_()); }
   // As a callable for code outside planners/ (the obstacle sampler's stop hook).
   std::function<bool()> asFunction() const { return [t = *this] { return t(); }; }
-  // Seconds left before the deadline (infinity when there is none).
-  double secondsLeft() const {
-    if (!deadline_) return std::numeric_limits<double>::infinity();
-    return std::chrono::duration<double>(*deadline_ - Clock::now()).count();
-  }
 
  private:
   std::optional<Clock::time_point> deadline_;
