@@ -29,6 +29,11 @@ struct PhaseTimes {
   double sampling_ms = 0, training_ms = 0, milestones_ms = 0, roadmap_ms = 0, query_ms = 0;
   double certify_ms = 0;  // proving path segments free (part of query_ms for roadmap planners)
   double total() const { return sampling_ms + training_ms + milestones_ms + roadmap_ms + query_ms; }
+  PhaseTimes& operator+=(const PhaseTimes& o) {
+    sampling_ms += o.sampling_ms, training_ms += o.training_ms, milestones_ms += o.milestones_ms;
+    roadmap_ms += o.roadmap_ms, query_ms += o.query_ms, certify_ms += o.certify_ms;
+    return *this;
+  }
 };
 
 struct PlanResult {

@@ -54,11 +54,7 @@ void addBuild(const planners::PlanResult& build, planners::PlanResult& query) {
   query.collision_checks += build.collision_checks;
   query.local_planner_calls += build.local_planner_calls;
   query.distance_queries += build.distance_queries;
-  query.times.sampling_ms += build.times.sampling_ms;
-  query.times.training_ms += build.times.training_ms;
-  query.times.milestones_ms += build.times.milestones_ms;
-  query.times.roadmap_ms += build.times.roadmap_ms;
-  query.times.certify_ms += build.times.certify_ms;
+  query.times += build.times;  // a build answers no query: its query_ms is 0
 }
 
 // Path quality measured by an independent checker, so the planners' counters are untouched.
