@@ -85,7 +85,9 @@ TEST(DriverOutput, PathsAndResultsParseBackWithTheSameValues) {
   // Simplification never lengthens a path.
   for (const auto& runs : run.results)
     for (const auto& r : runs.runs)
-      if (r.result.solved()) EXPECT_LE(r.path_length, r.raw_length + 1e-12);
+      if (r.result.solved()) {
+        EXPECT_LE(r.path_length, r.raw_length + 1e-12);
+      }
   fs::remove_all(dir);
 }
 
