@@ -17,6 +17,7 @@ namespace svmp::cspace {
 inline constexpr int kFree = 0;
 inline constexpr int kJointLimitHit = -1;
 inline constexpr int kSelfCollisionHit = -2;
+inline constexpr int kPredictedHit = -3;  // a learned proxy predicts a collision (cspace/fastron_checker.hpp)
 
 // What a check() result means, for messages: "free", "outside the joint limits", "in self-collision"
 // or "in collision with obstacle 'NAME'".
@@ -24,6 +25,7 @@ inline std::string describeHit(const Environment& env, int hit) {
   if (hit == kFree) return "free";
   if (hit == kJointLimitHit) return "outside the joint limits";
   if (hit == kSelfCollisionHit) return "in self-collision";
+  if (hit == kPredictedHit) return "predicted in collision by the proxy checker";
   return "in collision with obstacle '" + env.byId(hit).name + "'";
 }
 

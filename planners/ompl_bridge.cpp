@@ -1,14 +1,19 @@
 // The OMPL bridge (Sucan, Moll, Kavraki, IEEE RAM 2012): our collision checker as OMPL's state validity
 // checker and our straight-line validator as its motion validator, so OMPL's PRM (Kavraki et al. 1996),
-// LazyPRM (Bohlin, Kavraki 2000) and RRTConnect (Kuffner, LaValle 2000) run on the same scenarios with
-// the same checking resolution and counters. OMPL works on coordinates scaled by sqrt(w), where its
+// LazyPRM (Bohlin, Kavraki 2000), RRTConnect (Kuffner, LaValle 2000), RRT (LaValle 1998), SBL (Sanchez,
+// Latombe 2003), RRT* (Karaman, Frazzoli 2011), FMT* (Janson et al. 2015) and Informed RRT* (Gammell et
+// al. 2014) run on the same scenarios with the same checking resolution and counters. The optimizing
+// planners (RRT*, FMT*, Informed RRT*) stop at their first solution by default (path length objective
+// with an infinite cost threshold), as in Das & Yip 2019 sec. IV-B. OMPL works on coordinates scaled by sqrt(w), where its
 // Euclidean distance is the weighted metric of thesis eq. 4.3.
-// Parameters (scenario `planners.ompl-*`): time_limit (s, default 10), range (RRTConnect, 0 = OMPL's
-// default), k (PRM neighbours, 0 = OMPL's default).
+// Parameters (scenario `planners.ompl-*`): time_limit (s, default 10), range (the tree planners, 0 =
+// OMPL's default), k (PRM neighbours, 0 = OMPL's default), first_solution (optimizing planners, default
+// true; false runs them until the time limit).
 // Determinism: sampling uses our seeded generator, but OMPL's PRM interleaves growth and expansion by
 // wall time and checks for solutions in a second thread, so its runs are not exactly repeatable.
-// The planners register themselves as ompl-prm, ompl-lazyprm and ompl-rrtconnect
-// (planners/planner_registry.hpp); nothing else is exported.
+// The planners register themselves as ompl-prm, ompl-lazyprm, ompl-rrtconnect, ompl-rrt, ompl-sbl,
+// ompl-rrtstar, ompl-fmt and ompl-informedrrtstar (planners/planner_registry.hpp); nothing else is
+// exported.
 
 #include "planners/planner_registry.hpp"
 
@@ -19,10 +24,17 @@
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/planners/prm/LazyPRM.h>
 #include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/util/Console.h>
 
 #include <chrono>
+#include <limits>
 #include <random>
 
 namespace svmp::planners {
@@ -113,14 +125,16 @@ class SeededSampler final : public ob::StateSampler {
 
 struct OmplOptions {
   double time_limit = 10;  // s; the run's Termination may end it sooner
-  double range = 0;        // RRTConnect's range; 0: OMPL's default
+  double range = 0;        // the tree planners' range; 0: OMPL's default
   int k = 0;               // PRM neighbours; 0: OMPL's default
+  bool first_solution = true;  // optimizing planners stop at their first solution
 
   static OmplOptions fromParameters(const cspace::ParameterSet& params) {
     OmplOptions o;
     o.time_limit = params.getDouble("time_limit", o.time_limit, 1e-3, 1e6);
     o.range = params.getDouble("range", o.range, 0.0, 1e6);
     o.k = static_cast<int>(params.getInt("k", o.k, 0, 10000));
+    o.first_solution = params.getBool("first_solution", o.first_solution);
     return o;
   }
 };
@@ -164,18 +178,13 @@ class OmplPlanner final : public Planner {
       goal[i] = query.goal[i] * scale[i];
     }
     pdef->setStartAndGoalStates(start, goal);
-    ob::PlannerPtr planner;
-    if (name_ == "ompl-prm") {
-      auto prm = std::make_shared<og::PRM>(si);
-      if (options_.k > 0) prm->setMaxNearestNeighbors(options_.k);
-      planner = prm;
-    } else if (name_ == "ompl-lazyprm") {
-      planner = std::make_shared<og::LazyPRM>(si);
-    } else {
-      auto rrt = std::make_shared<og::RRTConnect>(si);
-      if (options_.range > 0) rrt->setRange(options_.range);
-      planner = rrt;
+    const bool optimizing = name_ == "ompl-rrtstar" || name_ == "ompl-fmt" || name_ == "ompl-informedrrtstar";
+    if (optimizing && options_.first_solution) {
+      auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(si);
+      objective->setCostThreshold(ob::Cost(std::numeric_limits<double>::infinity()));
+      pdef->setOptimizationObjective(objective);
     }
+    const ob::PlannerPtr planner = makeOmplPlanner(si);
     planner->setProblemDefinition(pdef);
     planner->setup();
     const auto t0 = Clock::now();
@@ -201,6 +210,25 @@ class OmplPlanner final : public Planner {
     planner->clear();
   }
 
+  ob::PlannerPtr makeOmplPlanner(const ob::SpaceInformationPtr& si) const {
+    auto ranged = [this](auto planner) {
+      if (options_.range > 0) planner->setRange(options_.range);
+      return planner;
+    };
+    if (name_ == "ompl-prm") {
+      auto prm = std::make_shared<og::PRM>(si);
+      if (options_.k > 0) prm->setMaxNearestNeighbors(options_.k);
+      return prm;
+    }
+    if (name_ == "ompl-lazyprm") return std::make_shared<og::LazyPRM>(si);
+    if (name_ == "ompl-rrt") return ranged(std::make_shared<og::RRT>(si));
+    if (name_ == "ompl-sbl") return ranged(std::make_shared<og::SBL>(si));
+    if (name_ == "ompl-rrtstar") return ranged(std::make_shared<og::RRTstar>(si));
+    if (name_ == "ompl-informedrrtstar") return ranged(std::make_shared<og::InformedRRTstar>(si));
+    if (name_ == "ompl-fmt") return std::make_shared<og::FMT>(si);
+    return ranged(std::make_shared<og::RRTConnect>(si));
+  }
+
   std::string name_;
   OmplOptions options_;
 };
@@ -223,5 +251,10 @@ auto factory(const char* name) {
 SVMP_REGISTER_PLANNER("ompl-prm", factory("ompl-prm"));
 SVMP_REGISTER_PLANNER("ompl-lazyprm", factory("ompl-lazyprm"));
 SVMP_REGISTER_PLANNER("ompl-rrtconnect", factory("ompl-rrtconnect"));
+SVMP_REGISTER_PLANNER("ompl-rrt", factory("ompl-rrt"));
+SVMP_REGISTER_PLANNER("ompl-sbl", factory("ompl-sbl"));
+SVMP_REGISTER_PLANNER("ompl-rrtstar", factory("ompl-rrtstar"));
+SVMP_REGISTER_PLANNER("ompl-fmt", factory("ompl-fmt"));
+SVMP_REGISTER_PLANNER("ompl-informedrrtstar", factory("ompl-informedrrtstar"));
 
 }  // namespace svmp::planners

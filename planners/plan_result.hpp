@@ -45,6 +45,10 @@ struct PlanResult {
   std::uint64_t collision_checks = 0;
   std::uint64_t local_planner_calls = 0;
   std::uint64_t distance_queries = 0;  // FCL distance queries (certification)
+  // Proxy checkers only (PlanningContext::repairer): stretches of the path replanned on the exact
+  // checker, and the exact checks of verification and repair.
+  int repaired_stretches = 0;
+  std::uint64_t exact_checks = 0;
   std::uint64_t milestones = 0;
   std::uint64_t roadmap_edges = 0;
   std::uint64_t support_vectors = 0;

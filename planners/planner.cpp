@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "planners/verify_repair.hpp"
+
 namespace svmp::planners {
 namespace {
 
@@ -62,9 +64,22 @@ bool checkEndpoints(const PlanningContext& context, const cspace::Query& query, 
   return true;
 }
 
-void Planner::certify(PlanResult& result) const {
+void Planner::certify(PlanResult& result, std::uint64_t seed, const Termination& stop) const {
   if (!context_.certifier || !result.solved() || result.certified) return;
   const auto t0 = Clock::now();
+  if (context_.repairer) {
+    RepairStats stats;
+    std::string why;
+    result.certified = context_.repairer->verifyAndRepair(result.path, name(), seed, stop, stats, why);
+    result.times.certify_ms += msSince(t0);
+    result.repaired_stretches += stats.invalid_stretches;
+    result.exact_checks += stats.exact_checks;
+    if (result.certified) return;
+    result.status = PlanStatus::kFailed;
+    result.message = why;
+    result.path.clear();
+    return;
+  }
   size_t i = 0;
   while (i + 1 < result.path.size() && context_.certifier->isValid(result.path[i], result.path[i + 1])) ++i;
   result.times.certify_ms += msSince(t0);
@@ -92,7 +107,7 @@ PlanResult Planner::query(const cspace::Query& q, std::uint64_t seed, const Term
   PlanResult result;
   if (checkEndpoints(context_, q, result)) {
     answer(q, seed, stop, result);
-    certify(result);
+    certify(result, seed, stop);
   }
   scope.finish(result);
   return result;
@@ -108,7 +123,7 @@ PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Term
     if (built_) {
       result.status = PlanStatus::kFailed;
       answer(q, seed, stop, result);
-      certify(result);
+      certify(result, seed, stop);
     }
   }
   scope.finish(result);

@@ -25,6 +25,7 @@
 
 namespace svmp::planners {
 
+class PathRepairer;
 class RiskFunction;
 class Roadmap;
 
@@ -37,6 +38,10 @@ struct PlanningContext {
   // set, a planner reports kSolved only for a path whose every segment it proved: roadmap planners
   // drop a disproved edge and search again, the others fail the query. Null: no certification.
   const cspace::MotionValidator* certifier = nullptr;
+  // When the checker is a learned proxy: verifies a non-roadmap planner's path with the exact checker
+  // and replans its invalid stretches there (planners/verify_repair.hpp); the certifier then proves
+  // segments with the exact checker too. Null: the checker is exact.
+  const PathRepairer* repairer = nullptr;
 };
 
 // What a planner learned, for pictures and inspection; null where it has none.
@@ -78,8 +83,9 @@ class Planner {
   // Called after clear() by subclasses.
   void forgetBuild() { built_ = false; }
   // With a certifier: proves each segment of a solved, not yet certified result; the first that fails
-  // turns the result into kFailed (message names it, path cleared).
-  void certify(PlanResult& result) const;
+  // turns the result into kFailed (message names it, path cleared). With a repairer: verify and repair
+  // instead, failing only when a stretch cannot be repaired.
+  void certify(PlanResult& result, std::uint64_t seed, const Termination& stop) const;
 
   PlanningContext context_;
 

@@ -74,6 +74,10 @@ DhArm::DhArm(DhArmSpec spec)
       spec_.flange.a == 0 && spec_.flange.d == 0 && spec_.tool_tip.isZero();
   if (tip_is_last_origin && !moving_origins_.empty() && moving_origins_.back() == static_cast<int>(n) - 1)
     moving_origins_.pop_back();
+  for (const DhRow& row : spec_.rows) {
+    cos_alpha_.push_back(std::cos(row.alpha));
+    sin_alpha_.push_back(std::sin(row.alpha));
+  }
 }
 
 void DhArm::linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const {
@@ -91,16 +95,29 @@ Eigen::Isometry3d DhArm::flangePose(const Eigen::Ref<const Eigen::VectorXd>& q) 
   return t * rowTransform(spec_.flange, 0);
 }
 
+// The closed-form product of the DH rows (the FK kernel evaluates it at every query): frame i's
+// origin moves by R (a, -sin(alpha) d, cos(alpha) d) and its rotation is R RotX(alpha) RotZ(theta),
+// written out column by column instead of composing 4x4 isometries.
 void DhArm::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Matrix3Xd& points) const {
   points.resize(3, numControlPoints());
-  Eigen::Isometry3d t = spec_.base;
+  Eigen::Vector3d c0 = spec_.base.linear().col(0), c1 = spec_.base.linear().col(1),
+                  c2 = spec_.base.linear().col(2);
+  Eigen::Vector3d p = spec_.base.translation();
+  auto advance = [&](const DhRow& row, double ca, double sa, double theta) {
+    p += row.a * c0 + (ca * row.d) * c2 - (sa * row.d) * c1;
+    const double ct = std::cos(theta), st = std::sin(theta);
+    const Eigen::Vector3d y = ca * c1 + sa * c2;  // RotX(alpha)'s y and z columns in the world
+    c2 = ca * c2 - sa * c1;
+    c1 = ct * y - st * c0;
+    c0 = ct * c0 + st * y;
+  };
   size_t next = 0;
   for (size_t i = 0; i < spec_.rows.size(); ++i) {
-    t = t * rowTransform(spec_.rows[i], q[i]);
-    if (next < moving_origins_.size() && moving_origins_[next] == static_cast<int>(i))
-      points.col(next++) = t.translation();
+    advance(spec_.rows[i], cos_alpha_[i], sin_alpha_[i], q[i] + spec_.rows[i].offset);
+    if (next < moving_origins_.size() && moving_origins_[next] == static_cast<int>(i)) points.col(next++) = p;
   }
-  points.col(next) = t * rowTransform(spec_.flange, 0) * spec_.tool_tip;
+  advance(spec_.flange, std::cos(spec_.flange.alpha), std::sin(spec_.flange.alpha), spec_.flange.offset);
+  points.col(next) = p + spec_.tool_tip.x() * c0 + spec_.tool_tip.y() * c1 + spec_.tool_tip.z() * c2;
 }
 
 namespace {

@@ -54,6 +54,7 @@ class DhArm final : public Robot {
  private:
   DhArmSpec spec_;
   std::vector<int> moving_origins_;  // frames whose origin is a distinct, moving joint origin
+  std::vector<double> cos_alpha_, sin_alpha_;  // per DH row, for the closed-form control points
 };
 
 // Thesis Table 4.3 with `joints` (3 or 6) joints; 3 gives the simplified model of ch. 2.3 whose last

@@ -31,13 +31,15 @@ double parseDouble(const std::string& flag, const std::string& value, double min
 const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
          "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify]\n"
-         "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--check]\n"
+         "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--checker NAME] [--check]\n"
          "  --planners  comma-separated: svmp, prm, local, ompl-prm, ompl-lazyprm, ompl-rrtconnect\n"
          "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
          "  --time-limit  seconds per run; a planner that reaches it reports status timeout\n"
          "  --paths     JSON of every run's certified path (waypoints); --path-dir: one OMPL matrix\n"
          "              text file per solved run (one configuration a line)\n"
          "  --simplify  shortcut and reduce every solved path, each new segment certified\n"
+         "  --checker   fcl (default), fastron-fk or fastron-rbf: plan on a learned proxy checker; every\n"
+         "              path is verified on FCL and its invalid stretches replanned (verify and repair)\n"
          "  --check     print the scenario's summary, validate planners and --set, verify the witness\n";
 }
 
@@ -60,6 +62,11 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, 1L << 62));
     else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, 1024));
     else if (flag == "--time-limit") o.time_limit = parseDouble(flag, value(), 1e-6, 1e7);
+    else if (flag == "--checker") {
+      o.checker = value();
+      if (o.checker != "fcl" && o.checker != "fastron-fk" && o.checker != "fastron-rbf")
+        throw std::invalid_argument("flag --checker: '" + o.checker + "' is not fcl, fastron-fk or fastron-rbf");
+    }
     else if (flag == "--json") o.json_path = value();
     else if (flag == "--svg") o.svg_dir = value();
     else if (flag == "--paths") o.paths_json = value();

@@ -14,30 +14,14 @@
 #include "bench/experiments/svg_writer.hpp"
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
+#include "cspace/fastron_checker.hpp"
 #include "cspace/motion_validator.hpp"
 #include "planners/path_simplifier.hpp"
 #include "planners/planner_registry.hpp"
+#include "planners/verify_repair.hpp"
 
 namespace svmp::experiments {
 namespace {
-
-struct Stats {
-  double mean = 0, std = 0, median = 0;
-  int count = 0;
-};
-
-Stats statsOf(std::vector<double> v) {
-  Stats s;
-  s.count = static_cast<int>(v.size());
-  if (v.empty()) return s;
-  for (double x : v) s.mean += x;
-  s.mean /= v.size();
-  for (double x : v) s.std += (x - s.mean) * (x - s.mean);
-  s.std = v.size() > 1 ? std::sqrt(s.std / (v.size() - 1)) : 0;
-  std::sort(v.begin(), v.end());
-  s.median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-  return s;
-}
 
 template <class F>
 Stats collect(const PlannerRuns& runs, bool solved_only, F field) {
@@ -79,21 +63,55 @@ void measurePath(const cspace::Scenario& scenario, const cspace::ConfigurationSp
   }
 }
 
+// With --checker fastron-*: the proxy (trained once, on the scenario's query end points too), its
+// batched validator, and verify and repair on the exact checker (Das & Yip 2019, sec. IV-B).
+struct Proxy {
+  Proxy(const cspace::Scenario& scenario, const DriverOptions& options, const planners::PlanningContext& exact,
+        std::ostream& log) {
+    cspace::ParameterSet params = scenario.paramsFor(options.checker);
+    for (const auto& [key, value] : options.overrides)
+      if (key.rfind(options.checker + ".", 0) == 0)
+        params.set(key.substr(options.checker.size() + 1), value, "flag --set " + key + "=" + value);
+    auto o = cspace::FastronCheckerOptions::fromParameters(options.checker, params);
+    params.requireAllUsed();
+    o.threads = options.threads;
+    checker = std::make_unique<cspace::FastronChecker>(scenario.robot, o);
+    std::vector<Eigen::VectorXd> ends;
+    for (const auto& q : scenario.queries) ends.push_back(q.start), ends.push_back(q.goal);
+    const auto s = checker->train(exact.checker, options.seed, ends);
+    log << "svmp-plan: " << options.checker << ": " << s.labelled << " configurations labelled in " << s.label_ms
+        << " ms, learned in " << s.learn_ms << " ms: " << s.train.support << " support points"
+        << (s.train.converged ? "" : " (not converged)") << "\n";
+    validator = std::make_unique<cspace::FastronMotionValidator>(*checker, exact.space, scenario.resolution);
+    repairer = std::make_unique<planners::PathRepairer>(exact);
+  }
+  std::unique_ptr<cspace::FastronChecker> checker;
+  std::unique_ptr<cspace::FastronMotionValidator> validator;
+  std::unique_ptr<planners::PathRepairer> repairer;
+};
+
 // Everything a run shares: the space, the exact checker, the thesis' sampled validator, the certifier
-// and an independent checker for measurements.
+// and an independent checker for measurements; with a proxy checker, the context planners see is the
+// proxy's and `exact` is the one verify and repair uses.
 struct World {
-  explicit World(const cspace::Scenario& scenario, int threads)
+  World(const cspace::Scenario& scenario, const DriverOptions& options, std::ostream& log)
       : space(scenario.makeSpace()),
         checker(scenario.robot, scenario.environment, scenario.self_collision),
         validator(checker, space, scenario.resolution),
         certifier(checker, space, scenario.resolution),
         measuring(scenario.robot, scenario.environment, scenario.self_collision),
-        context{space, checker, validator, threads, &certifier} {}
+        exact{space, checker, validator, options.threads, &certifier},
+        proxy(options.checker == "fcl" ? nullptr : std::make_unique<Proxy>(scenario, options, exact, log)),
+        context(proxy ? planners::PlanningContext{space, *proxy->checker, *proxy->validator, options.threads,
+                                                  &certifier, proxy->repairer.get()}
+                      : exact) {}
   const cspace::ConfigurationSpace space;
   const cspace::CollisionChecker checker;
   const cspace::DiscreteMotionValidator validator;
   const cspace::CertifiedMotionValidator certifier;
   const cspace::CollisionChecker measuring;
+  const planners::PlanningContext exact;
+  const std::unique_ptr<Proxy> proxy;
   const planners::PlanningContext context;
 };
 
@@ -109,32 +127,12 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(const cspace::Scena
   }
   for (const auto& [key, value] : options.overrides) {
     const std::string planner = key.substr(0, key.find('.'));
+    if (planner == options.checker) continue;  // the proxy checker's own parameters
     if (std::find(options.planners.begin(), options.planners.end(), planner) == options.planners.end())
       throw cspace::ScenarioError("flag --set " + key + "=" + value + ": planner '" + planner +
                                   "' is not among --planners");
   }
   return planners;
-}
-
-std::string jsonStats(const Stats& s) {
-  std::ostringstream o;
-  o << std::setprecision(10) << "{\"mean\": " << s.mean << ", \"std\": " << s.std << ", \"median\": " << s.median
-    << ", \"n\": " << s.count << "}";
-  return o.str();
-}
-
-// std::setw counts bytes; "±" is two, so pad by code points instead.
-std::string pad(const std::string& text, size_t width) {
-  size_t points = 0;
-  for (unsigned char c : text) points += (c & 0xC0) != 0x80;
-  return text + std::string(points < width ? width - points : 1, ' ');
-}
-
-std::string meanStd(const Stats& s, int precision) {
-  if (s.count == 0) return "-";
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(precision) << s.mean << " ± " << s.std;
-  return o.str();
 }
 
 // Pictures of one run (thesis Figs 3.1-3.8, 4.5, 4.7): what the planner learned and its path.
@@ -164,13 +162,14 @@ int PlannerRuns::certified() const {
 }
 
 void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options) {
-  const World world(scenario, options.threads);
+  std::ostringstream quiet;
+  const World world(scenario, options, quiet);
   makePlanners(scenario, options, world.context);
 }
 
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
                                        std::ostream& log) {
-  const World world(scenario, options.threads);
+  const World world(scenario, options, log);
   // Every planner is built first: a bad parameter stops the run before any work.
   auto planners = makePlanners(scenario, options, world.context);
   std::vector<PlannerRuns> results;

@@ -1,6 +1,10 @@
 #include "bench/experiments/output_text.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <iomanip>
+#include <sstream>
 
 namespace svmp::experiments {
 
@@ -36,6 +40,40 @@ std::string safeFileName(const std::string& text) {
   const size_t first = out.find_first_not_of('.');
   out = first == std::string::npos ? "" : out.substr(first);
   return out.empty() ? "_" : out;
+}
+
+Stats statsOf(std::vector<double> v) {
+  Stats s;
+  s.count = static_cast<int>(v.size());
+  if (v.empty()) return s;
+  for (double x : v) s.mean += x;
+  s.mean /= v.size();
+  for (double x : v) s.std += (x - s.mean) * (x - s.mean);
+  s.std = v.size() > 1 ? std::sqrt(s.std / (v.size() - 1)) : 0;
+  std::sort(v.begin(), v.end());
+  s.median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  return s;
+}
+
+std::string jsonStats(const Stats& s) {
+  std::ostringstream o;
+  o << std::setprecision(10) << "{\"mean\": " << s.mean << ", \"std\": " << s.std << ", \"median\": " << s.median
+    << ", \"n\": " << s.count << "}";
+  return o.str();
+}
+
+// std::setw counts bytes; "±" is two, so pad by code points instead.
+std::string pad(const std::string& text, size_t width) {
+  size_t points = 0;
+  for (unsigned char c : text) points += (c & 0xC0) != 0x80;
+  return text + std::string(points < width ? width - points : 1, ' ');
+}
+
+std::string meanStd(const Stats& s, int precision) {
+  if (s.count == 0) return "-";
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(precision) << s.mean << " ± " << s.std;
+  return o.str();
 }
 
 }  // namespace svmp::experiments

@@ -188,7 +188,7 @@ void expectScenarioError(const std::string& planner, std::map<std::string, std::
 
 TEST(MakePlanner, UnknownPlannerNamesIt) {
   expectScenarioError("rrt-star", {}, "rrt-star");
-  expectScenarioError("ompl-rrtstar", {}, "ompl-rrtstar");
+  expectScenarioError("ompl-rrtstarr", {}, "ompl-rrtstarr");
 }
 
 TEST(MakePlanner, UnknownParameterNamesTheField) {

@@ -1,0 +1,51 @@
+#include "bench/experiments/fastron/moving_box.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace svmp::experiments::fastron {
+
+MovingBox::MovingBox(const MovingBoxOptions& options, std::mt19937_64& rng) : options_(options) {
+  std::uniform_real_distribution<double> side(options.min_side, options.max_side), unit(0, 1);
+  sides_ = Eigen::Vector3d(side(rng), side(rng), side(rng));
+  const double r = options.ring_inner + (options.ring_outer - options.ring_inner) * unit(rng);
+  const double phi = 2 * std::numbers::pi * unit(rng);
+  centre_ = Eigen::Vector3d(r * std::cos(phi), r * std::sin(phi),
+                            options.z_low + (options.z_high - options.z_low) * unit(rng));
+}
+
+MovingBox::MovingBox(const MovingBoxOptions& options, const Eigen::Vector3d& sides, const Eigen::Vector3d& centre)
+    : options_(options), sides_(sides), centre_(centre) {}
+
+void MovingBox::move(std::mt19937_64& rng) {
+  std::normal_distribution<double> normal(0, 1);
+  Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
+  centre_ += options_.move * direction.normalized();
+  keepInside();
+}
+
+void MovingBox::keepInside() {
+  const double r = centre_.head<2>().norm();
+  if (r < options_.ring_inner || r > options_.ring_outer) {
+    const double target = r < options_.ring_inner ? 2 * options_.ring_inner - r : 2 * options_.ring_outer - r;
+    const Eigen::Vector2d dir = r > 1e-12 ? Eigen::Vector2d(centre_.head<2>() / r) : Eigen::Vector2d(1, 0);
+    centre_.head<2>() = target * dir;
+  }
+  if (centre_.z() < options_.z_low) centre_.z() = 2 * options_.z_low - centre_.z();
+  if (centre_.z() > options_.z_high) centre_.z() = 2 * options_.z_high - centre_.z();
+}
+
+std::shared_ptr<const cspace::Environment> MovingBox::environment() const {
+  cspace::Obstacle box;
+  box.name = "box";
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = centre_;
+  box.shape = robots::Shape::box(sides_, pose);
+  return std::make_shared<const cspace::Environment>(std::vector<cspace::Obstacle>{box});
+}
+
+std::unique_ptr<cspace::CollisionChecker> MovingBox::checker(const cspace::Scenario& scenario) const {
+  return std::make_unique<cspace::CollisionChecker>(scenario.robot, environment(), scenario.self_collision);
+}
+
+}  // namespace svmp::experiments::fastron

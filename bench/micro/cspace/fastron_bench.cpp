@@ -1,0 +1,108 @@
+// Fastron proxy collision checking (Das & Yip 2019) against the exact FCL checker on the same
+// configurations: single queries, batched motion checks (64 configurations of one segment at once) and
+// a model update after the obstacle moved. Scenario: bench/scenarios/fastron_panda.yaml (Panda with a
+// hand, one box); models trained on 5,000 labelled configurations with the defaults of svmp-fastron.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <random>
+
+#include "cspace/collision_checker.hpp"
+#include "cspace/fastron_checker.hpp"
+#include "cspace/scenario/scenario.hpp"
+
+namespace {
+
+using namespace svmp;
+
+struct Fixture {
+  cspace::Scenario scenario = cspace::loadScenario(SVMP_SOURCE_DIR "/bench/scenarios/fastron_panda.yaml");
+  cspace::CollisionChecker exact{scenario.robot, scenario.environment, scenario.self_collision};
+  cspace::FastronChecker fk{scenario.robot, cspace::FastronCheckerOptions::defaults(cspace::FastronFeatures::kControlPoints)};
+  cspace::FastronChecker rbf{scenario.robot, cspace::FastronCheckerOptions::defaults(cspace::FastronFeatures::kJoints)};
+  Eigen::MatrixXd configurations, segments;  // 1024 uniform; 16 segments of 64
+  Fixture() {
+    fk.train(exact, 1);
+    rbf.train(exact, 1);
+    std::mt19937_64 rng(7);
+    const auto& robot = *scenario.robot;
+    configurations.resize(robot.dof(), 1024);
+    for (int i = 0; i < 1024; ++i)
+      for (int k = 0; k < robot.dof(); ++k)
+        configurations(k, i) =
+            std::uniform_real_distribution<double>(robot.lowerLimits()[k], robot.upperLimits()[k])(rng);
+    segments.resize(robot.dof(), 1024);
+    for (int s = 0; s < 16; ++s)
+      for (int i = 0; i < 64; ++i)
+        segments.col(s * 64 + i) =
+            configurations.col(s) + (configurations.col(s + 16) - configurations.col(s)) * (0.125 * i / 63.0);
+  }
+  const cspace::ValidityChecker& checker(int which) const {
+    return which == 0 ? static_cast<const cspace::ValidityChecker&>(exact) : which == 1 ? fk : rbf;
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+// 0: FCL, 1: Fastron FK, 2: Fastron RBF.
+void BM_Query(benchmark::State& state) {
+  const auto& f = fixture();
+  const auto& checker = f.checker(static_cast<int>(state.range(0)));
+  int i = 0, hits = 0;
+  for (auto _ : state) hits += checker.check(f.configurations.col(i++ & 1023)) != cspace::kFree;
+  benchmark::DoNotOptimize(hits);
+  state.SetItemsProcessed(state.iterations());
+  if (state.range(0) > 0) state.counters["support"] = static_cast<const cspace::FastronChecker&>(checker).model().size();
+}
+BENCHMARK(BM_Query)->Arg(0)->Arg(1)->Arg(2)->ArgName("fcl0_fk1_rbf2");
+
+// All 64 configurations of one segment (no early exit, so every checker does the same work).
+void BM_MotionBatch(benchmark::State& state) {
+  const auto& f = fixture();
+  const int which = static_cast<int>(state.range(0));
+  int s = 0, hits = 0;
+  std::vector<int> out;
+  for (auto _ : state) {
+    const auto seg = f.segments.middleCols((s++ & 15) * 64, 64);
+    if (which == 0) {
+      for (int i = 0; i < 64; ++i) hits += f.exact.check(seg.col(i)) != cspace::kFree;
+    } else {
+      (which == 1 ? f.fk : f.rbf).checkBatch(seg, out);
+      hits += out[0];
+    }
+  }
+  benchmark::DoNotOptimize(hits);
+  state.SetItemsProcessed(state.iterations() * 64);
+}
+BENCHMARK(BM_MotionBatch)->Arg(0)->Arg(1)->Arg(2)->ArgName("fcl0_fk1_rbf2");
+
+// Active learning and a warm update after the box moved 5 cm (labelling by FCL included); the box
+// moves back and forth so every update has work to do.
+void BM_Update(benchmark::State& state) {
+  const auto& f = fixture();
+  cspace::FastronChecker model(f.scenario.robot, cspace::FastronCheckerOptions::defaults(
+                                                     state.range(0) == 1 ? cspace::FastronFeatures::kControlPoints
+                                                                         : cspace::FastronFeatures::kJoints));
+  model.train(f.exact, 3);
+  std::vector<std::unique_ptr<cspace::CollisionChecker>> moved;
+  for (double dx : {0.05, 0.0}) {
+    std::vector<cspace::Obstacle> obstacles = f.scenario.environment->obstacles();
+    obstacles.front().shape.pose.translation().x() += dx;
+    moved.push_back(std::make_unique<cspace::CollisionChecker>(
+        f.scenario.robot, std::make_shared<const cspace::Environment>(obstacles), f.scenario.self_collision));
+  }
+  std::uint64_t seed = 11;
+  for (auto _ : state) {
+    const auto s = model.update(*moved[seed & 1], seed);
+    ++seed;
+    state.counters["support"] = s.train.support;
+  }
+}
+BENCHMARK(BM_Update)->Arg(1)->Arg(2)->ArgName("fk1_rbf2")->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

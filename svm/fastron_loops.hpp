@@ -1,0 +1,31 @@
+// The arithmetic of a Fastron model (Das & Yip 2019, sec. III-B): sums of the second-order rational
+// quadratic kernel k(x, y) = (1 + (g/2)|x - y|^2)^-2, applied to whole feature vectors (Fastron RBF,
+// block = dim) or to consecutive blocks of them and summed (the FK kernel: one block of 3 per control
+// point, eq. 4). Points are stored as a structure of arrays in float (row k of coordinate k at
+// xs + k * stride), so a query is one pass of 8-lane arithmetic over the support set. Dispatched at run
+// time to AVX2+FMA or the baseline ISA.
+// Thread safety: pure functions; scratch lives on the stack.
+#pragma once
+
+namespace svmp::svm::fastron_loops {
+
+struct PointsSoA {
+  const float* xs;  // dim rows of `stride` floats
+  long stride;
+  int dim;
+  int block;        // coordinates per kernel block; dim is a multiple of it
+  int n;            // points (columns) in use
+};
+
+// out[j] = k(x_j, z) for j in [0, n): one lazy column of the kernel matrix.
+void kernelColumn(const PointsSoA& points, const float* z, float half_gamma, float* out);
+// sum_j weight[j] k(x_j, z): the model's value at one query.
+double weightedSum(const PointsSoA& points, const float* weight, const float* z, float half_gamma);
+// out[b] = sum_j weight[j] k(x_j, z_b) for B queries (queries: dim rows of stride `query_stride`):
+// all configurations of one motion at once, each support point's coordinates loaded once.
+void weightedSumBatch(const PointsSoA& points, const float* weight, const float* queries,
+                      long query_stride, int B, float half_gamma, double* out);
+
+bool usingAvx2();
+
+}  // namespace svmp::svm::fastron_loops
