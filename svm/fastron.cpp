@@ -12,7 +12,8 @@
 namespace svmp::svm {
 namespace {
 
-long paddedStride(int n) { return (static_cast<long>(n) + 7) / 8 * 8; }
+// 16 floats: the widest vector the query loop uses (AVX-512) reads whole vectors.
+long paddedStride(int n) { return (static_cast<long>(n) + 15) / 16 * 16; }
 
 // Row-major features to coordinate rows of `stride` floats (zero padded).
 std::vector<float> toColumns(const std::vector<float>& rows, const std::vector<int>& pick, int dim,

@@ -4,6 +4,7 @@
 // point, eq. 4). Points are stored as a structure of arrays in float (row k of coordinate k at
 // xs + k * stride), so a query is one pass of 8-lane arithmetic over the support set. Dispatched at run
 // time to AVX2+FMA or the baseline ISA.
+// weightedSum needs `n` padded with zero weights and zero coordinates to a multiple of 16.
 // Thread safety: pure functions; scratch lives on the stack.
 #pragma once
 
@@ -21,8 +22,9 @@ struct PointsSoA {
 void kernelColumn(const PointsSoA& points, const float* z, float half_gamma, float* out);
 // sum_j weight[j] k(x_j, z): the model's value at one query.
 double weightedSum(const PointsSoA& points, const float* weight, const float* z, float half_gamma);
-// out[b] = sum_j weight[j] k(x_j, z_b) for B queries (queries: dim rows of stride `query_stride`):
-// all configurations of one motion at once, each support point's coordinates loaded once.
+// out[b] = sum_j weight[j] k(x_j, z_b) for B queries (queries: dim rows of stride `query_stride`).
+// One query after another: swapping the loops (queries across the lanes, support points outside) was
+// measured slower (docs/fastron.md).
 void weightedSumBatch(const PointsSoA& points, const float* weight, const float* queries,
                       long query_stride, int B, float half_gamma, double* out);
 

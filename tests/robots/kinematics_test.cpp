@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
@@ -228,6 +229,33 @@ TEST(DhArmTest, PandaJointTwoSwingsTheArmAboutItsAxis) {
   // About +y by 0.7 the upper arm tips towards +x: frame 3 at 0.316 (sin 0.7, 0, cos 0.7) above frame 2.
   expectNear(swung[2].translation(),
              Eigen::Vector3d(0.316 * std::sin(0.7), 0, 0.333 + 0.316 * std::cos(0.7)), "frame 3");
+}
+
+TEST(DhArmTest, ClosedFormControlPointsMatchTheIsometryChain) {
+  // Random configurations, a rotated and shifted base and a tool tip: every control point is a link
+  // frame's origin (in chain order) and the last is the tool tip through flangePose.
+  for (DhArmSpec spec : {pandaSpec(), crsF3Spec(6)}) {
+    spec.base = Eigen::Translation3d(0.1, -0.2, 0.3) * Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+    spec.tool_tip = Eigen::Vector3d(0.01, -0.02, 0.12);
+    const DhArm arm(spec);
+    std::mt19937_64 rng(5);
+    for (int trial = 0; trial < 50; ++trial) {
+      Eigen::VectorXd q(arm.dof());
+      for (int k = 0; k < q.size(); ++k)
+        q[k] = std::uniform_real_distribution<double>(arm.lowerLimits()[k], arm.upperLimits()[k])(rng);
+      Poses poses;
+      arm.linkPoses(q, poses);
+      Eigen::Matrix3Xd points;
+      arm.controlPoints(q, points);
+      ASSERT_EQ(points.cols(), arm.numControlPoints());
+      size_t frame = 0;
+      for (int c = 0; c + 1 < points.cols(); ++c) {
+        while (frame < poses.size() && (poses[frame].translation() - points.col(c)).norm() > 1e-12) ++frame;
+        ASSERT_LT(frame, poses.size()) << spec.name << ": control point " << c << " is no frame origin";
+      }
+      EXPECT_LT((arm.flangePose(q) * spec.tool_tip - points.col(points.cols() - 1)).norm(), 1e-12) << spec.name;
+    }
+  }
 }
 
 TEST(RobotTest, LimitsAndConfigurationChecks) {

@@ -1,0 +1,125 @@
+// The Fastron proxy checker (cspace/fastron_checker.hpp) against the exact FCL checker on a planar
+// 3-link arm with one box: held-out accuracy, every training point classified as labelled after
+// training and after an update that follows a move, batched predictions and the batched motion
+// validator equal to one-by-one checking, parameters with their errors.
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <random>
+
+#include "cspace/collision_checker.hpp"
+#include "cspace/fastron_checker.hpp"
+#include "robots/planar_arm.hpp"
+
+namespace svmp::cspace {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::shared_ptr<const robots::Robot> arm() {
+  return std::make_shared<const robots::PlanarArm>(std::vector<double>{0.4, 0.3, 0.2},
+                                                   std::vector<double>{0.04, 0.04, 0.04},
+                                                   Eigen::Vector3d::Constant(-kPi), Eigen::Vector3d::Constant(kPi));
+}
+
+std::unique_ptr<CollisionChecker> boxAt(const std::shared_ptr<const robots::Robot>& robot, double x, double y) {
+  Obstacle o;
+  o.name = "box";
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(x, y, 0);
+  o.shape = robots::Shape::box(Eigen::Vector3d(0.2, 0.2, 0.2), pose);
+  return std::make_unique<CollisionChecker>(robot, std::make_shared<const Environment>(std::vector<Obstacle>{o}), false);
+}
+
+double accuracy(const FastronChecker& proxy, const ValidityChecker& exact, int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-kPi, kPi);
+  int agree = 0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d q(u(rng), u(rng), u(rng));
+    agree += proxy.isValid(q) == exact.isValid(q);
+  }
+  return double(agree) / n;
+}
+
+class ProxyFeatures : public ::testing::TestWithParam<FastronFeatures> {};
+
+TEST_P(ProxyFeatures, LearnsTheCSpaceAndFollowsAMove) {
+  const auto robot = arm();
+  auto exact = boxAt(robot, 0.45, 0.2);
+  FastronCheckerOptions o = FastronCheckerOptions::defaults(GetParam());
+  o.initial_samples = 3000;
+  FastronChecker proxy(robot, o);
+  const std::vector<Eigen::VectorXd> extra = {Eigen::Vector3d(0.3, 0.1, -0.2), Eigen::Vector3d(2.5, -1, 0.5)};
+  const FastronLearnStats s = proxy.train(*exact, 1, extra);
+  ASSERT_TRUE(s.train.converged);
+  EXPECT_EQ(s.labelled, 3002);
+  EXPECT_GT(accuracy(proxy, *exact, 3000, 11), GetParam() == FastronFeatures::kControlPoints ? 0.95 : 0.85);
+  for (const auto& q : extra) EXPECT_EQ(proxy.isValid(q), exact->isValid(q));
+  for (const auto& q : proxy.supportConfigurations()) EXPECT_EQ(proxy.isValid(q), exact->isValid(q));
+
+  exact = boxAt(robot, 0.45, 0.3);  // the box moved 10 cm
+  const double stale = accuracy(proxy, *exact, 3000, 12);
+  const FastronLearnStats u = proxy.update(*exact, 2, extra);
+  EXPECT_TRUE(u.train.converged);
+  EXPECT_EQ(u.labelled, static_cast<int>(s.train.support) + o.exploit_samples + o.explore_samples + 2);
+  EXPECT_GE(accuracy(proxy, *exact, 3000, 12), stale);
+  for (const auto& q : extra) EXPECT_EQ(proxy.isValid(q), exact->isValid(q));
+  EXPECT_EQ(&proxy.environment(), &exact->environment());
+}
+
+INSTANTIATE_TEST_SUITE_P(Features, ProxyFeatures,
+                         ::testing::Values(FastronFeatures::kControlPoints, FastronFeatures::kJoints));
+
+TEST(FastronChecker, BatchAndBatchedMotionsEqualOneByOne) {
+  const auto robot = arm();
+  const auto exact = boxAt(robot, 0.45, 0.2);
+  FastronCheckerOptions o = FastronCheckerOptions::defaults(FastronFeatures::kControlPoints);
+  o.initial_samples = 1500;
+  FastronChecker proxy(robot, o);
+  proxy.train(*exact, 3);
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-kPi, kPi);
+  Eigen::MatrixXd qs(3, 100);
+  for (int i = 0; i < 100; ++i) qs.col(i) = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  qs(0, 7) = 4;  // outside the joint limits
+  std::vector<int> batch;
+  proxy.checkBatch(qs, batch);
+  for (int i = 0; i < 100; ++i) EXPECT_EQ(batch[i], proxy.check(qs.col(i))) << i;
+  EXPECT_EQ(batch[7], kJointLimitHit);
+
+  const ConfigurationSpace space(robot->lowerLimits(), robot->upperLimits(), Eigen::Vector3d::Ones());
+  const FastronMotionValidator batched(proxy, space, 0.01);
+  const DiscreteMotionValidator sampled(proxy, space, 0.01);
+  for (int i = 0; i + 1 < 100; i += 2) {
+    if (i == 6) continue;
+    const Eigen::Vector3d a = qs.col(i), b = a + 0.3 * (Eigen::Vector3d(qs.col(i + 1)) - a);
+    EXPECT_EQ(batched.isValid(a, b), sampled.isValid(a, b)) << i;
+    if (!proxy.isValid(a)) continue;
+    double t1 = -1, t2 = -1;
+    EXPECT_EQ(batched.checkMotion(a, b, t1), sampled.checkMotion(a, b, t2)) << i;
+    EXPECT_EQ(t1, t2) << i;
+  }
+}
+
+TEST(FastronChecker, ParametersAreReadWithTheirBounds) {
+  ParameterSet p("test.yaml", "planners.fastron-fk.", {{"gamma", "50"}, {"exploit_samples", "10"}});
+  const auto o = FastronCheckerOptions::fromParameters("fastron-fk", p);
+  EXPECT_EQ(o.model.gamma, 50);
+  EXPECT_EQ(o.exploit_samples, 10);
+  EXPECT_EQ(o.features, FastronFeatures::kControlPoints);
+  ParameterSet bad("test.yaml", "planners.fastron-rbf.", {{"gamma", "-1"}});
+  try {
+    FastronCheckerOptions::fromParameters("fastron-rbf", bad);
+    FAIL() << "negative gamma accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("gamma"), std::string::npos) << e.what();
+  }
+  ParameterSet typo("test.yaml", "planners.fastron-fk.", {{"gama", "5"}});
+  FastronCheckerOptions::fromParameters("fastron-fk", typo);
+  EXPECT_THROW(typo.requireAllUsed(), ScenarioError);
+  EXPECT_THROW(FastronCheckerOptions::fromParameters("fastron-xx", p), ScenarioError);
+}
+
+}  // namespace
+}  // namespace svmp::cspace

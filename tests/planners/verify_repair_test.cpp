@@ -1,0 +1,82 @@
+// Verify and Repair (planners/verify_repair.hpp): paths planned on a stale Fastron proxy (trained before
+// the wall moved, as after an unnoticed obstacle move) are certified on the exact checker and re-checked
+// densely; a path straight through a wall is
+// repaired around it; without a repairable stretch the query fails instead of returning a path.
+#include <gtest/gtest.h>
+
+#include "cspace/certified_motion_validator.hpp"
+#include "cspace/fastron_checker.hpp"
+#include "planners/verify_repair.hpp"
+#include "tests/planners/test_world.hpp"
+
+namespace svmp::planners {
+namespace {
+
+struct ProxyWorld {
+  const std::string yaml = test::gapScenario(0.15, "  ompl-rrtconnect: {}\n");
+  std::unique_ptr<test::World> w = test::makeWorld(yaml);
+  std::unique_ptr<test::World> stale;  // the same wall at x = 0.25 instead of 0.5
+  cspace::CertifiedMotionValidator certifier{w->checker, w->space, w->scenario.resolution};
+  PlanningContext exact{w->space, w->checker, w->validator, 1, &certifier};
+  PathRepairer repairer{exact};
+  std::unique_ptr<cspace::FastronChecker> proxy;
+  std::unique_ptr<cspace::FastronMotionValidator> proxy_validator;
+  ProxyWorld() {
+    std::string moved = yaml;
+    for (size_t at; (at = moved.find("position: [0.5,")) != std::string::npos;) moved.replace(at, 15, "position: [0.25,");
+    stale = test::makeWorld(moved);
+    proxy = std::make_unique<cspace::FastronChecker>(
+        w->scenario.robot, cspace::FastronCheckerOptions::defaults(cspace::FastronFeatures::kJoints));
+    proxy->train(stale->checker, 1, {w->query().start, w->query().goal});
+    proxy_validator = std::make_unique<cspace::FastronMotionValidator>(*proxy, w->space, w->scenario.resolution);
+  }
+  PlanningContext context() const {
+    return PlanningContext{w->space, *proxy, *proxy_validator, 1, &certifier, &repairer};
+  }
+};
+
+TEST(VerifyRepair, PathsOnAStaleProxyAreCertifiedOnTheExactChecker) {
+  const ProxyWorld pw;
+  const PlanningContext context = pw.context();
+  int solved = 0, repaired = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    auto planner = makePlanner("ompl-rrtconnect", context, cspace::ParameterSet());
+    const PlanResult r = planner->solve(pw.w->query(), seed, Termination::after(2));
+    if (!r.solved()) {
+      ADD_FAILURE() << "seed " << seed << ": " << planStatusName(r.status) << " " << r.message;
+      continue;
+    }
+    ++solved;
+    repaired += r.repaired_stretches;
+    EXPECT_TRUE(r.certified);
+    EXPECT_TRUE(test::pathIsValid(*pw.w, r.path)) << "seed " << seed;
+    for (size_t i = 0; i + 1 < r.path.size(); ++i) EXPECT_TRUE(pw.certifier.isValid(r.path[i], r.path[i + 1]));
+  }
+  EXPECT_GE(solved, 6);
+  EXPECT_GT(repaired, 0) << "the stale proxy never needed a repair: the test would not exercise it";
+}
+
+TEST(VerifyRepair, AStraightPathThroughTheWallIsReplannedAroundIt) {
+  const ProxyWorld pw;
+  std::vector<Eigen::VectorXd> path = {pw.w->query().start, Eigen::Vector2d(0.5, 0.2), pw.w->query().goal};
+  RepairStats stats;
+  std::string why;
+  ASSERT_TRUE(pw.repairer.verifyAndRepair(path, "ompl-rrtconnect", 3, Termination::after(10), stats, why)) << why;
+  EXPECT_EQ(stats.invalid_stretches, 1);  // the waypoint inside the wall and both segments around it
+  EXPECT_GT(stats.exact_checks, 0u);
+  EXPECT_TRUE(test::pathIsValid(*pw.w, path));
+}
+
+TEST(VerifyRepair, AStretchThatCannotBeRepairedFailsTheQuery) {
+  const ProxyWorld pw;
+  std::vector<Eigen::VectorXd> path = {pw.w->query().start, Eigen::Vector2d(0.5, 0.2), pw.w->query().goal};
+  RepairStats stats;
+  std::string why;
+  // A stop condition that has already fired: the repair planner cannot run.
+  EXPECT_FALSE(pw.repairer.verifyAndRepair(path, "ompl-rrtconnect", 3, Termination::when([] { return true; }), stats, why));
+  EXPECT_NE(why.find("repair of waypoints 0 to 2"), std::string::npos) << why;
+  EXPECT_EQ(path.size(), 3u);  // untouched
+}
+
+}  // namespace
+}  // namespace svmp::planners
