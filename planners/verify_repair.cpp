@@ -34,12 +34,14 @@ bool PathRepairer::verifyAndRepair(std::vector<Eigen::VectorXd>& path, const std
     while (j + 1 < path.size() && !exact_.checker.isValid(path[j])) ++j;
     ++stats.invalid_stretches;
     const auto r0 = Clock::now();
-    const auto sub = makePlanner(repairer, exact_, cspace::ParameterSet())
-                         ->solve(cspace::Query{path[i], path[j], {}}, seed + stats.invalid_stretches, stop);
+    const cspace::Query stretch{path[i], path[j], {}};
+    auto sub = makePlanner(repairer, exact_, cspace::ParameterSet())->solve(stretch, seed + stats.invalid_stretches, stop);
+    if (!sub.solved() && repairer != fallback_)
+      sub = makePlanner(fallback_, exact_, cspace::ParameterSet())->solve(stretch, seed + stats.invalid_stretches, stop);
     repair_ms += msSince(r0);
     if (!sub.solved()) {
       why = "repair of waypoints " + std::to_string(i) + " to " + std::to_string(j) + " with " + repairer +
-            " failed: " + sub.message;
+            (repairer != fallback_ ? " and " + fallback_ : "") + " failed: " + sub.message;
       ok = false;
       break;
     }

@@ -83,16 +83,15 @@ struct Proxy {
         << " ms, learned in " << s.learn_ms << " ms: " << s.train.support << " support points"
         << (s.train.converged ? "" : " (not converged)") << "\n";
     validator = std::make_unique<cspace::FastronMotionValidator>(*checker, exact.space, scenario.resolution);
-    repairer = std::make_unique<planners::PathRepairer>(exact);
   }
   std::unique_ptr<cspace::FastronChecker> checker;
   std::unique_ptr<cspace::FastronMotionValidator> validator;
-  std::unique_ptr<planners::PathRepairer> repairer;
 };
 
 // Everything a run shares: the space, the exact checker, the thesis' sampled validator, the certifier
-// and an independent checker for measurements; with a proxy checker, the context planners see is the
-// proxy's and `exact` is the one verify and repair uses.
+// and an independent checker for measurements. Planners see `context`: the exact checker or the proxy,
+// and a repairer that verifies every non-roadmap path and replans its failing stretches on `exact`
+// (with the exact checker, segments that clip an obstacle between sampled checks).
 struct World {
   World(const cspace::Scenario& scenario, const DriverOptions& options, std::ostream& log)
       : space(scenario.makeSpace()),
@@ -101,16 +100,20 @@ struct World {
         certifier(checker, space, scenario.resolution),
         measuring(scenario.robot, scenario.environment, scenario.self_collision),
         exact{space, checker, validator, options.threads, &certifier},
+        repair_context{space, checker, certifier, options.threads, &certifier},
+        repairer(repair_context),
         proxy(options.checker == "fcl" ? nullptr : std::make_unique<Proxy>(scenario, options, exact, log)),
-        context(proxy ? planners::PlanningContext{space, *proxy->checker, *proxy->validator, options.threads,
-                                                  &certifier, proxy->repairer.get()}
-                      : exact) {}
+        context{space, proxy ? static_cast<const cspace::ValidityChecker&>(*proxy->checker) : checker,
+                proxy ? static_cast<const cspace::MotionValidator&>(*proxy->validator) : validator, options.threads,
+                &certifier, &repairer} {}
   const cspace::ConfigurationSpace space;
   const cspace::CollisionChecker checker;
   const cspace::DiscreteMotionValidator validator;
   const cspace::CertifiedMotionValidator certifier;
   const cspace::CollisionChecker measuring;
   const planners::PlanningContext exact;
+  const planners::PlanningContext repair_context;  // repairs accept only segments the certifier proves
+  const planners::PathRepairer repairer;
   const std::unique_ptr<Proxy> proxy;
   const planners::PlanningContext context;
 };
@@ -232,6 +235,8 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
       << (scenario.queries.size() > 1 ? " x " + std::to_string(scenario.queries.size()) + " queries" : "")
       << ", seeds " << options.seed << ".." << options.seed + options.runs - 1 << ", " << options.threads
       << " thread(s)" << (options.simplify ? ", paths simplified" : "") << "\n";
+  if (options.checker != "fcl")
+    out << "checker " << options.checker << " (learned proxy; every path verified on FCL, failing stretches replanned)\n";
   out << "mean ± std over all runs (path length and clearance over solved runs); solved = certified "
          "collision-free; CD = collision checks, LP = local planner calls, DQ = distance queries "
          "(certification)\n";
@@ -275,6 +280,8 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
       << ",\n      \"local_planner_calls\": " << field([](const RunRecord& r) { return double(r.result.local_planner_calls); })
       << ",\n      \"distance_queries\": " << field([](const RunRecord& r) { return double(r.result.distance_queries); })
       << ",\n      \"certified_segments\": " << field([](const RunRecord& r) { return double(r.result.certified_segments); })
+      << ",\n      \"repaired_stretches\": " << field([](const RunRecord& r) { return double(r.result.repaired_stretches); })
+      << ",\n      \"exact_checks\": " << field([](const RunRecord& r) { return double(r.result.exact_checks); })
       << ",\n      \"milestones\": " << field([](const RunRecord& r) { return double(r.result.milestones); })
       << ",\n      \"roadmap_edges\": " << field([](const RunRecord& r) { return double(r.result.roadmap_edges); })
       << ",\n      \"support_vectors\": " << field([](const RunRecord& r) { return double(r.result.support_vectors); })

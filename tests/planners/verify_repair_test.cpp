@@ -74,7 +74,7 @@ TEST(VerifyRepair, AStretchThatCannotBeRepairedFailsTheQuery) {
   std::string why;
   // A stop condition that has already fired: the repair planner cannot run.
   EXPECT_FALSE(pw.repairer.verifyAndRepair(path, "ompl-rrtconnect", 3, Termination::when([] { return true; }), stats, why));
-  EXPECT_NE(why.find("repair of waypoints 0 to 2"), std::string::npos) << why;
+  EXPECT_NE(why.find("repair of waypoints 0 to 2 with ompl-rrtconnect failed"), std::string::npos) << why;
   EXPECT_EQ(path.size(), 3u);  // untouched
 }
 

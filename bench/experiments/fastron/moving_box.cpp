@@ -35,17 +35,20 @@ void MovingBox::keepInside() {
   if (centre_.z() > options_.z_high) centre_.z() = 2 * options_.z_high - centre_.z();
 }
 
-std::shared_ptr<const cspace::Environment> MovingBox::environment() const {
+std::shared_ptr<const cspace::Environment> MovingBox::environment(const std::vector<cspace::Obstacle>& fixed) const {
   cspace::Obstacle box;
   box.name = "box";
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = centre_;
   box.shape = robots::Shape::box(sides_, pose);
-  return std::make_shared<const cspace::Environment>(std::vector<cspace::Obstacle>{box});
+  std::vector<cspace::Obstacle> obstacles = {box};
+  obstacles.insert(obstacles.end(), fixed.begin(), fixed.end());
+  return std::make_shared<const cspace::Environment>(obstacles);
 }
 
-std::unique_ptr<cspace::CollisionChecker> MovingBox::checker(const cspace::Scenario& scenario) const {
-  return std::make_unique<cspace::CollisionChecker>(scenario.robot, environment(), scenario.self_collision);
+std::unique_ptr<cspace::CollisionChecker> MovingBox::checker(const cspace::Scenario& scenario,
+                                                             const std::vector<cspace::Obstacle>& fixed) const {
+  return std::make_unique<cspace::CollisionChecker>(scenario.robot, environment(fixed), scenario.self_collision);
 }
 
 }  // namespace svmp::experiments::fastron

@@ -28,9 +28,12 @@ class MovingBox {
   void move(std::mt19937_64& rng);
   const Eigen::Vector3d& centre() const { return centre_; }
   const Eigen::Vector3d& sides() const { return sides_; }
-  std::shared_ptr<const cspace::Environment> environment() const;
-  // The exact checker of the scenario's robot with this box (self-collision as the scenario says).
-  std::unique_ptr<cspace::CollisionChecker> checker(const cspace::Scenario& scenario) const;
+  // This box, then `fixed` (obstacles that do not move).
+  std::shared_ptr<const cspace::Environment> environment(const std::vector<cspace::Obstacle>& fixed = {}) const;
+  // The exact checker of the scenario's robot with this box and `fixed` (self-collision as the scenario
+  // says).
+  std::unique_ptr<cspace::CollisionChecker> checker(const cspace::Scenario& scenario,
+                                                    const std::vector<cspace::Obstacle>& fixed = {}) const;
 
  private:
   void keepInside();

@@ -18,8 +18,7 @@ namespace {
 struct CheckerWorld {
   std::string name;
   const cspace::ValidityChecker* checker;
-  std::unique_ptr<cspace::MotionValidator> validator;
-  std::unique_ptr<planners::PathRepairer> repairer;
+  std::unique_ptr<cspace::MotionValidator> validator;  // null: the exact one
 };
 
 }  // namespace
@@ -39,6 +38,8 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
     throw cspace::ScenarioError(scenario.path + ": the planning experiment needs a query and a box obstacle first");
   const cspace::Query& query = scenario.queries.front();
   const robots::Shape& shape = scenario.environment->obstacles().front().shape;
+  const std::vector<cspace::Obstacle> fixed(scenario.environment->obstacles().begin() + 1,
+                                            scenario.environment->obstacles().end());
   const cspace::ConfigurationSpace space = scenario.makeSpace();
   PlanningResults results;
   std::map<std::pair<std::string, std::string>, PlannerCheckerRuns> rows;
@@ -52,7 +53,7 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
       for (int attempt = 0;; ++attempt) {
         MovingBox moved = box;
         if (move > 0) moved.move(rng);
-        exact = moved.checker(scenario);
+        exact = moved.checker(scenario, fixed);
         if (exact->isValid(query.start) && exact->isValid(query.goal)) {
           box = moved;
           break;
@@ -67,17 +68,17 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
       ++results.positions;
       const cspace::DiscreteMotionValidator exact_validator(*exact, space, scenario.resolution);
       const cspace::CertifiedMotionValidator certifier(*exact, space, scenario.resolution);
-      const planners::PlanningContext exact_context{space, *exact, exact_validator, 1, &certifier};
+      const planners::PlanningContext repair_context{space, *exact, certifier, 1, &certifier};
+      const planners::PathRepairer repairer(repair_context);
       std::vector<CheckerWorld> worlds;
-      worlds.push_back({"fcl", exact.get(), nullptr, nullptr});
+      worlds.push_back({"fcl", exact.get(), nullptr});
       for (auto [name, proxy] : {std::pair{"fastron-fk", &fk}, std::pair{"fastron-rbf", &rbf}})
-        worlds.push_back({name, proxy, std::make_unique<cspace::FastronMotionValidator>(*proxy, space, scenario.resolution),
-                          std::make_unique<planners::PathRepairer>(exact_context)});
+        worlds.push_back({name, proxy, std::make_unique<cspace::FastronMotionValidator>(*proxy, space, scenario.resolution)});
       for (const auto& planner_name : options.planners) {
         for (const auto& w : worlds) {
-          const planners::PlanningContext context =
-              w.validator ? planners::PlanningContext{space, *w.checker, *w.validator, 1, &certifier, w.repairer.get()}
-                          : exact_context;
+          const cspace::MotionValidator& validator =
+              w.validator ? *w.validator : static_cast<const cspace::MotionValidator&>(exact_validator);
+          const planners::PlanningContext context{space, *w.checker, validator, 1, &certifier, &repairer};
           auto planner = planners::makePlanner(planner_name, context, scenario.paramsFor(planner_name));
           PlannerCheckerRuns& row = rows[{planner_name, w.name}];
           row.planner = planner_name, row.checker = w.name;

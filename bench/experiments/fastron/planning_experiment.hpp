@@ -5,7 +5,9 @@
 // collision is drawn again); after each move both models are updated (active learning, the query's
 // end points among the training points) and every planner plans `plans_per_move` times with each
 // checker. With a proxy every path is verified on FCL and its invalid stretches replanned there
-// (planners/verify_repair.hpp); svmp and prm prove their roadmap edges with FCL instead. A run counts
+// (planners/verify_repair.hpp); svmp and prm prove their roadmap edges with FCL instead. With FCL as
+// well, a path whose segment clips an obstacle between the sampled checks is repaired, not dropped,
+// so every checker gets the same treatment. A run counts
 // as solved only when its path is certified. Times are wall time of the whole query, verify and
 // repair included; model updates are timed apart.
 #include <iosfwd>
