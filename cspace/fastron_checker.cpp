@@ -27,7 +27,7 @@ FastronCheckerOptions FastronCheckerOptions::defaults(FastronFeatures features) 
     o.model.beta = 30;
   } else {
     o.model.gamma = 10;
-    o.model.beta = 30;
+    o.model.beta = 100;
   }
   return o;
 }
@@ -146,9 +146,11 @@ FastronLearnStats FastronChecker::learn(const ValidityChecker& exact, std::vecto
   stats.train = model_.train(feats, labels, alpha);
   support_q_.clear();
   support_alpha_.clear();
+  support_label_.clear();
   for (int i : model_.supportIndices()) {
     support_q_.push_back(std::move(qs[i]));
     support_alpha_.push_back(alpha[i]);
+    support_label_.push_back(labels[i]);
   }
   stats.learn_ms = msSince(t0);
   return stats;
@@ -174,10 +176,16 @@ FastronLearnStats FastronChecker::update(const ValidityChecker& exact, std::uint
   std::vector<Eigen::VectorXd> qs = support_q_;
   std::vector<double> alpha = support_alpha_;
   const Eigen::VectorXd lo = robot_->lowerLimits(), hi = robot_->upperLimits();
-  const int support = static_cast<int>(support_q_.size());
-  // Stage 1, exploitation: the C-obstacles moved a little; look near the boundary the model knows.
+  // Stage 1, exploitation: the C-obstacles moved a little; look near the boundary the model knows,
+  // around the support points in collision (the rarer class, whose misses cost the TPR).
+  std::vector<int> around;
+  for (size_t i = 0; i < support_q_.size(); ++i)
+    if (support_label_[i] > 0) around.push_back(static_cast<int>(i));
+  if (around.empty())
+    for (size_t i = 0; i < support_q_.size(); ++i) around.push_back(static_cast<int>(i));
+  const int support = static_cast<int>(around.size());
   for (int i = 0; support > 0 && i < options_.exploit_samples; ++i) {
-    Eigen::VectorXd q = support_q_[i % support];
+    Eigen::VectorXd q = support_q_[around[i % support]];
     for (int k = 0; k < q.size(); ++k)
       q[k] = std::clamp(q[k] + std::normal_distribution<double>(0, options_.exploit_sigma * (hi[k] - lo[k]))(rng),
                         lo[k], hi[k]);

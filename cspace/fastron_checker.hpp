@@ -7,7 +7,8 @@
 //
 // Learning (sec. III-B): train() labels uniform configurations with the exact checker and trains from
 // zero; update(), after the workspace changed, runs the two-stage active learning (Gaussian
-// perturbations of the support points, then uniform exploration), relabels the support points and the
+// perturbations of the support points in collision, the rarer class whose misses cost the TPR (all
+// support points when none is), then uniform exploration), relabels the support points and the
 // new samples with the exact checker and retrains starting from the previous weights. Extra
 // configurations (a planner's start and goal) can be added to either; a converged model classifies
 // every training point correctly.
@@ -36,8 +37,8 @@ struct FastronCheckerOptions {
   FastronFeatures features = FastronFeatures::kControlPoints;
   svm::FastronOptions model;           // gamma, beta, limits (defaults set per feature map below)
   int initial_samples = 5000;          // labelled uniform configurations of the first model
-  int exploit_samples = 1000;          // per update: Gaussian perturbations of support points
-  double exploit_sigma = 0.05;         // their standard deviation, fraction of each joint's range
+  int exploit_samples = 1000;          // per update: Gaussian perturbations of support points in collision
+  double exploit_sigma = 0.1;          // their standard deviation, fraction of each joint's range
   int explore_samples = 200;           // per update: uniform configurations
   int threads = 1;                     // labelling threads
 
@@ -103,6 +104,7 @@ class FastronChecker final : public ValidityChecker {
   const ValidityChecker* exact_ = nullptr;
   std::vector<Eigen::VectorXd> support_q_;
   std::vector<double> support_alpha_;
+  std::vector<std::int8_t> support_label_;  // +1 in collision
   Eigen::VectorXd centre_, half_range_;  // joint scaling to [-1, 1]
   mutable std::atomic<std::uint64_t> queries_{0};
 };

@@ -59,6 +59,13 @@ DhArm::DhArm(DhArmSpec spec)
   for (Shape shape : spec_.tool) {
     const std::string err = shape.validate();
     if (!err.empty()) throw std::invalid_argument(name_ + ": tool shape: " + err);
+    if (shape.kind == ShapeKind::kBox) {
+      Eigen::Index axis = 0;
+      shape.dims.maxCoeff(&axis);
+      const Eigen::Vector3d half = 0.5 * shape.dims[axis] * shape.pose.linear().col(axis);
+      tool_points_.push_back(shape.pose.translation() + half);
+      tool_points_.push_back(shape.pose.translation() - half);
+    }
     shape.pose = to_flange * shape.pose;
     link_shapes_.back().push_back(shape);
   }
@@ -117,7 +124,9 @@ void DhArm::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Mat
     if (next < moving_origins_.size() && moving_origins_[next] == static_cast<int>(i)) points.col(next++) = p;
   }
   advance(spec_.flange, std::cos(spec_.flange.alpha), std::sin(spec_.flange.alpha), spec_.flange.offset);
-  points.col(next) = p + spec_.tool_tip.x() * c0 + spec_.tool_tip.y() * c1 + spec_.tool_tip.z() * c2;
+  auto inFlange = [&](const Eigen::Vector3d& v) { return Eigen::Vector3d(p + v.x() * c0 + v.y() * c1 + v.z() * c2); };
+  points.col(next++) = inFlange(spec_.tool_tip);
+  for (const Eigen::Vector3d& v : tool_points_) points.col(next++) = inFlange(v);
 }
 
 namespace {

@@ -35,8 +35,13 @@ class DhArm final : public Robot {
   const DhArmSpec& spec() const { return spec_; }
   void linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const override;
   Eigen::Isometry3d flangePose(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  // Control points: the distinct moving joint origins, the tool tip, then both ends of the longest
+  // axis of each tool box (Das & Yip 2019 sec. III-A place points at joint origins; points off the
+  // last axis make the last joint observable).
   void controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Matrix3Xd& points) const override;
-  int numControlPoints() const override { return static_cast<int>(moving_origins_.size()) + 1; }
+  int numControlPoints() const override {
+    return static_cast<int>(moving_origins_.size() + 1 + tool_points_.size());
+  }
 
   // Closed-form position IK of the first three joints for the elbow structure of the CRS-F3
   // (alpha0 = 0, a0 = 0, alpha1 = +-pi/2, alpha2 = 0, d2 = d3 = 0, a3 = 0, alpha3 = +-pi/2), the
@@ -55,6 +60,10 @@ class DhArm final : public Robot {
   DhArmSpec spec_;
   std::vector<int> moving_origins_;  // frames whose origin is a distinct, moving joint origin
   std::vector<double> cos_alpha_, sin_alpha_;  // per DH row, for the closed-form control points
+  // Control points after the tip, in the flange frame: both ends of each tool box's longest axis. The
+  // joint origins and the tip lie on the last joint's axis, so without them the FK kernel cannot see
+  // the last joint turn the tool (a hand wider than it is deep).
+  std::vector<Eigen::Vector3d> tool_points_;
 };
 
 // Thesis Table 4.3 with `joints` (3 or 6) joints; 3 gives the simplified model of ch. 2.3 whose last

@@ -175,9 +175,11 @@ TEST(DhArmTest, CrsF3ToolTipIsInTheFlangeFrame) {
   const DhArm arm(spec);
   Eigen::Matrix3Xd points;
   arm.controlPoints(Eigen::VectorXd::Zero(6), points);
-  ASSERT_EQ(points.cols(), 5);  // frame 6's origin is now distinct from the tip
+  ASSERT_EQ(points.cols(), 7);  // frame 6's origin is now distinct from the tip; then the box's two ends
   expectNear(points.col(3), Eigen::Vector3d(0.445, 0, 0.615), "frame 6");
   expectNear(points.col(4), Eigen::Vector3d(0.545, 0, 0.615), "tool tip");
+  expectNear(arm.flangePose(Eigen::VectorXd::Zero(6)).inverse() * points.col(5), Eigen::Vector3d(0.025, 0, 0), "box end");
+  expectNear(arm.flangePose(Eigen::VectorXd::Zero(6)).inverse() * points.col(6), Eigen::Vector3d(-0.025, 0, 0), "box end");
   EXPECT_EQ(arm.linkShapes(5).size(), 1u);
 }
 
@@ -237,6 +239,7 @@ TEST(DhArmTest, ClosedFormControlPointsMatchTheIsometryChain) {
   for (DhArmSpec spec : {pandaSpec(), crsF3Spec(6)}) {
     spec.base = Eigen::Translation3d(0.1, -0.2, 0.3) * Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
     spec.tool_tip = Eigen::Vector3d(0.01, -0.02, 0.12);
+    spec.tool = {Shape::box(Eigen::Vector3d(0.08, 0.2, 0.06), Eigen::Isometry3d(Eigen::Translation3d(0, 0.01, 0.05)))};
     const DhArm arm(spec);
     std::mt19937_64 rng(5);
     for (int trial = 0; trial < 50; ++trial) {
@@ -248,12 +251,19 @@ TEST(DhArmTest, ClosedFormControlPointsMatchTheIsometryChain) {
       Eigen::Matrix3Xd points;
       arm.controlPoints(q, points);
       ASSERT_EQ(points.cols(), arm.numControlPoints());
+      const int tip = arm.numControlPoints() - 1 - 2 * static_cast<int>(spec.tool.size());
       size_t frame = 0;
-      for (int c = 0; c + 1 < points.cols(); ++c) {
+      for (int c = 0; c < tip; ++c) {
         while (frame < poses.size() && (poses[frame].translation() - points.col(c)).norm() > 1e-12) ++frame;
         ASSERT_LT(frame, poses.size()) << spec.name << ": control point " << c << " is no frame origin";
       }
-      EXPECT_LT((arm.flangePose(q) * spec.tool_tip - points.col(points.cols() - 1)).norm(), 1e-12) << spec.name;
+      EXPECT_LT((arm.flangePose(q) * spec.tool_tip - points.col(tip)).norm(), 1e-12) << spec.name;
+      for (size_t t = 0; t < spec.tool.size(); ++t) {  // both ends of the box's longest (y) axis
+        const Eigen::Vector3d centre = spec.tool[t].pose.translation();
+        const double half = 0.5 * spec.tool[t].dims.y();
+        EXPECT_LT((arm.flangePose(q) * (centre + Eigen::Vector3d(0, half, 0)) - points.col(tip + 1 + 2 * t)).norm(), 1e-12);
+        EXPECT_LT((arm.flangePose(q) * (centre - Eigen::Vector3d(0, half, 0)) - points.col(tip + 2 + 2 * t)).norm(), 1e-12);
+      }
     }
   }
 }
