@@ -27,6 +27,7 @@ namespace svmp::planners {
 
 class RiskFunction;
 class Roadmap;
+struct SvppTrace;
 
 struct PlanningContext {
   const cspace::ConfigurationSpace& space;
@@ -44,6 +45,7 @@ struct PlannerView {
   const planners::ObstacleSamples* samples = nullptr;  // labelled samples (obstacle ids, or 1/2 for classes)
   const RiskFunction* risk = nullptr;                // decision functions F_k
   const Roadmap* roadmap = nullptr;
+  const SvppTrace* svpp = nullptr;                   // SVPP's patterns tried (planners/svpp_planner.hpp)
 };
 
 class Planner {
