@@ -18,12 +18,14 @@ bool inside(const Eigen::VectorXd& p, const SurfaceFollowing& o) {
   return (p.array() >= o.lower.array()).all() && (p.array() <= o.upper.array()).all();
 }
 
-// Appends p; false (with the status set) when the search must end there.
-bool advance(FollowResult& r, const Eigen::VectorXd& p, const SurfaceFollowing& o) {
+// Appends p; false (with the status set) when the search must end there. The length so far plus the
+// straight distance left is a lower bound on the final length, so a path is cut as soon as it exceeds
+// max_length.
+bool advance(FollowResult& r, const Eigen::VectorXd& p, const Eigen::VectorXd& goal, const SurfaceFollowing& o) {
   r.length += (p - r.path.back()).norm();
   r.path.push_back(p);
   if (!inside(p, o)) r.status = FollowStatus::kLeftSpace;
-  else if (r.length > o.max_length) r.status = FollowStatus::kTooLong;
+  else if (r.length + (goal - p).norm() > o.max_length) r.status = FollowStatus::kTooLong;
   else return true;
   return false;
 }
@@ -44,16 +46,15 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> planeBasis(const Eigen::Vector3d& n)
   return {e1, n.cross(e1)};
 }
 
-// Sum over points on the circle of radius r in the plane (p, n) of their distance to V = 0.
+// Sum over points on the circle of radius r in the plane (p, n) of their distance to V = 0, to first
+// order |V(x)| / |grad V(p)|; the gradient norm at p is one factor for all planes, so it is left out.
 double fitCost(const svm::BinaryModel& model, const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r) {
   const auto [e1, e2] = planeBasis(n);
   double cost = 0;
-  Eigen::Vector3d grad;
   for (int k = 0; k < kCirclePoints; ++k) {
     const double a = 2 * std::numbers::pi * k / kCirclePoints;
     const Eigen::Vector3d x = p + r * (std::cos(a) * e1 + std::sin(a) * e2);
-    const double v = model.decisionAndGradient(x.data(), grad.data());
-    cost += std::abs(v) / std::max(grad.norm(), 1e-9);
+    cost += std::abs(model.decision(x.data()));
   }
   return cost;
 }
@@ -113,7 +114,7 @@ FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorX
       best_angle = angles[k_min];
     }
     direction = best_angle;
-    if (!advance(r, arcPoint(best_angle), o)) return r;
+    if (!advance(r, arcPoint(best_angle), goal, o)) return r;
   }
   r.status = FollowStatus::kStepLimit;
   return r;
@@ -123,17 +124,16 @@ Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vect
   Eigen::Vector3d grad;
   model.decisionAndGradient(p.data(), grad.data());
   Eigen::Vector3d normal = grad.norm() > 1e-12 ? Eigen::Vector3d(grad.normalized()) : Eigen::Vector3d::UnitZ();
-  // Pitch and roll about the current normal, on 5 x 5 grids of shrinking span (30, 10, 3.3 deg).
-  double span = std::numbers::pi / 6;
+  // Pitch and roll about the current normal on 3 x 3 grids of shrinking span (+-20, +-6.7, +-2.2 deg).
+  double span = std::numbers::pi / 9;
   double best = fitCost(model, p, normal, radius);
   for (int level = 0; level < 3; ++level, span /= 3) {
     const auto [e1, e2] = planeBasis(normal);
     Eigen::Vector3d best_normal = normal;
-    for (int i = -2; i <= 2; ++i)
-      for (int j = -2; j <= 2; ++j) {
+    for (int i = -1; i <= 1; ++i)
+      for (int j = -1; j <= 1; ++j) {
         if (i == 0 && j == 0) continue;
-        const double pitch = span * i / 2, roll = span * j / 2;
-        const Eigen::Vector3d n = (normal + std::tan(pitch) * e1 + std::tan(roll) * e2).normalized();
+        const Eigen::Vector3d n = (normal + std::tan(span * i) * e1 + std::tan(span * j) * e2).normalized();
         const double cost = fitCost(model, p, n, radius);
         if (cost < best) best = cost, best_normal = n;
       }
@@ -173,7 +173,7 @@ FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorX
       r.status = FollowStatus::kNoSafePoint;
       return r;
     }
-    if (!advance(r, next, o)) return r;
+    if (!advance(r, next, goal, o)) return r;
   }
   r.status = FollowStatus::kStepLimit;
   return r;

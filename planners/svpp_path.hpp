@@ -6,13 +6,15 @@
 //   located by bisection on the angle); without a crossing, the arc point of smallest |V| if |V| < 1;
 //   none such ends the search (the paper's "no safe next point"), as does the step limit.
 //   3-D (sec. IV-B-4, Fig. 5): at the current point a plane is fitted to the surface by searching its
-//   pitch and roll (about the surface normal, coarse to fine) for the least sum of distances between
-//   plane points on a circle of radius d_s and the surface (distance ~ |V| / |grad V|); the direction
+//   pitch and roll (about the surface normal at the point; 3 x 3 grids of +-20, +-6.7, +-2.2 deg) for the
+//   least sum of distances between plane points on a circle of radius d_s and the surface (to first
+//   order |V| / |grad V(point)|); the direction
 //   towards the target (the goal: the nominal line's end) is projected on that plane, a step d_s taken
 //   along it, and the point moved back onto V = 0 by Newton steps along grad V; |V| >= 1 after that ends
 //   the search.
-// A point outside the space's bounds ends the search, and so does a path longer than `max_length`
-// (the planner passes the length of the best path found so far: a longer one cannot win).
+// A point outside the space's bounds ends the search, and so does a path that must end longer than
+// `max_length` (length so far + straight distance left; the planner passes the best path found so
+// far: a longer one cannot win).
 // Pure functions of a const model: thread-safe.
 #include <Eigen/Core>
 #include <functional>

@@ -23,7 +23,7 @@ SvppOptions SvppOptions::fromParameters(const cspace::ParameterSet& params) {
   o.max_patterns = static_cast<int>(params.getInt("max_patterns", o.max_patterns, 1, 100000));
   o.search_angle_deg = params.getDouble("search_angle_deg", o.search_angle_deg, 1, 359);
   o.step = params.getDouble("step", o.step, 1e-9, 1e6);
-  o.max_steps = static_cast<int>(params.getInt("max_steps", o.max_steps, 1, 10000000));
+  o.max_steps = static_cast<int>(params.getInt("max_steps", o.max_steps, 0, 10000000));
   o.gamma = params.getDouble("gamma", o.gamma, 1e-12, 1e12);
   o.C = params.getDouble("C", o.C, 1e-9, 1e12);
   o.eps = params.getDouble("eps", o.eps, 1e-15, 1);
@@ -38,8 +38,8 @@ std::string SvppOptions::validate() const {
   else if (!(guide_distance > virtual_distance))
     why << "guide_distance (" << guide_distance << ") must exceed virtual_distance (" << virtual_distance
         << "): the guides wrap the virtual obstacles";
-  else if (patterns < 0 || max_patterns < 1 || max_steps < 1)
-    why << "patterns must be >= 0, max_patterns and max_steps >= 1";
+  else if (patterns < 0 || max_patterns < 1 || max_steps < 0)
+    why << "patterns and max_steps must be >= 0, max_patterns >= 1";
   else if (patterns > max_patterns)
     why << "patterns (" << patterns << ") must not exceed max_patterns (" << max_patterns << ")";
   else if (!(search_angle_deg > 0 && search_angle_deg < 360))
@@ -53,11 +53,13 @@ SampleLayout SvppOptions::layout() const {
   return {virtual_samples, virtual_distance, guide_distance, guide_spacing};
 }
 
-SurfaceFollowing SvppOptions::following(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const {
+SurfaceFollowing SvppOptions::following(const cspace::Query& query, const Eigen::VectorXd& lower,
+                                        const Eigen::VectorXd& upper) const {
   SurfaceFollowing f;
   f.step = step;
   f.search_angle = search_angle_deg * std::numbers::pi / 180;
-  f.max_steps = max_steps;
+  const double automatic = std::ceil(3 * (query.goal - query.start).norm() / step);
+  f.max_steps = max_steps > 0 ? max_steps : static_cast<int>(std::min(automatic, 1e7));
   f.lower = lower;
   f.upper = upper;
   return f;
@@ -135,7 +137,7 @@ SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pat
   trial.svm_ms = msSince(t0);
   times.training_ms += trial.svm_ms;
   t0 = Clock::now();
-  SurfaceFollowing following = options_.following(space.lower(), space.upper());
+  SurfaceFollowing following = options_.following(query, space.lower(), space.upper());
   following.max_length = best_length;
   if (space.dim() == 2)
     trial.follow = followSurface2d(trial.model, query.start, query.goal, trace_.frame.along, following);

@@ -39,7 +39,9 @@ struct SvppOptions {
   int max_patterns = 200;           // patterns tried at most while no path was found
   double search_angle_deg = 120;    // theta_s
   double step = 0.05;               // d_s
-  int max_steps = 500;              // step limit of one surface following
+  // Step limit of one surface following; 0: 3 |goal - start| / d_s (a path three times the straight
+  // line's length; the paper gives no number).
+  int max_steps = 0;
   // SVM^light's -g: k(a, b) = exp(-gamma |a - b|^2); the paper's "size of Gaussian kernel is 10".
   double gamma = 10;
   double C = 1000;                  // soft-margin weight (the paper's gamma of eq. 6)
@@ -50,7 +52,7 @@ struct SvppOptions {
   bool operator==(const SvppOptions&) const = default;
   int patternsFor(int dim) const { return patterns > 0 ? patterns : dim == 2 ? kPaperPatterns2d : kPaperPatterns3d; }
   SampleLayout layout() const;
-  SurfaceFollowing following(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const;
+  SurfaceFollowing following(const cspace::Query& query, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const;
 };
 
 // One obstacle pattern tried: its training set, SVM and surface following.
