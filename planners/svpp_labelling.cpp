@@ -104,16 +104,20 @@ Pattern initialPattern(const std::vector<SvppObstacle>& obstacles, const Nominal
 }
 
 void addVirtualSamples(const NominalFrame& frame, const SampleLayout& layout, TrainingSet& set) {
+  addVirtualSamplesAt(frame, 0.0, layout, set);
+  addVirtualSamplesAt(frame, frame.length, layout, set);
+}
+
+void addVirtualSamplesAt(const NominalFrame& frame, double t_end, const SampleLayout& layout, TrainingSet& set) {
   const int n = layout.virtual_samples;
   const double d = layout.virtual_distance;
-  for (double t_end : {0.0, frame.length})
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < (frame.dim() == 3 ? n : 1); ++j) {
-        const double t = t_end + (i - 0.5 * (n - 1)) * d;
-        const double l = frame.dim() == 3 ? (j - 0.5 * (n - 1)) * d : 0.0;
-        set.add(frame.point(t, d, l), 1, SampleKind::kVirtual);
-        set.add(frame.point(t, -d, l), -1, SampleKind::kVirtual);
-      }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < (frame.dim() == 3 ? n : 1); ++j) {
+      const double t = t_end + (i - 0.5 * (n - 1)) * d;
+      const double l = frame.dim() == 3 ? (j - 0.5 * (n - 1)) * d : 0.0;
+      set.add(frame.point(t, d, l), 1, SampleKind::kVirtual);
+      set.add(frame.point(t, -d, l), -1, SampleKind::kVirtual);
+    }
 }
 
 void addGuideSamples(const NominalFrame& frame, const std::vector<SvppObstacle>& obstacles, const Pattern& pattern,

@@ -65,6 +65,8 @@ Pattern initialPattern(const std::vector<SvppObstacle>& obstacles, const Nominal
 // the line and centred on the end point; in 3-D an N_v x N_v grid of spacing d_v on each of the two
 // planes at +-d_v from the nominal plane, centred on the end point.
 void addVirtualSamples(const NominalFrame& frame, const SampleLayout& layout, TrainingSet& set);
+// The virtual obstacle of one end point, at position t along the frame's line.
+void addVirtualSamplesAt(const NominalFrame& frame, double t_end, const SampleLayout& layout, TrainingSet& set);
 
 // Guide samples at +-d_g from the line (2-D: t = 0, d_p, ..., length) or the plane (3-D: a grid of
 // spacing d_p over the part of the offset plane inside [lower, upper] grown by d_g). A guide of one

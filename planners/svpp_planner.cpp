@@ -162,6 +162,7 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     vertices.conservativeResize(dim, vertices.cols() + o.vertices.cols());
     vertices.rightCols(o.vertices.cols()) = o.vertices;
   }
+  trace_.obstacles = obstacles_;
   trace_.frame = dim == 2 ? nominalLine(query.start, query.goal) : nominalPlane(query.start, query.goal, vertices);
 
   // Patterns: the initial one, then a random walk flipping one obstacle at a time, new patterns only.

@@ -67,6 +67,7 @@ struct SvppTrial {
 
 // What one query did, for pictures and the timing tables.
 struct SvppTrace {
+  std::vector<SvppObstacle> obstacles;  // merged, pattern entries in this order
   NominalFrame frame;
   std::vector<SvppTrial> trials;
   int chosen = -1;  // index of the returned path's trial
