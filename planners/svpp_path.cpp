@@ -30,9 +30,14 @@ bool advance(FollowResult& r, const Eigen::VectorXd& p, const Eigen::VectorXd& g
   return false;
 }
 
-// Ends the path at the goal when it is within one step.
+// Ends the path at the goal when it is within one step; a last point within a quarter step of the
+// goal is replaced by it (a sliver segment would make a spurious corner).
 bool closeToGoal(FollowResult& r, const Eigen::VectorXd& goal, const SurfaceFollowing& o) {
   if ((goal - r.path.back()).norm() > o.step) return false;
+  if (r.path.size() > 1 && (goal - r.path.back()).norm() < 0.25 * o.step) {
+    r.length -= (r.path.back() - r.path[r.path.size() - 2]).norm();
+    r.path.pop_back();
+  }
   r.length += (goal - r.path.back()).norm();
   r.path.push_back(goal);
   r.status = r.length > o.max_length ? FollowStatus::kTooLong : FollowStatus::kReached;

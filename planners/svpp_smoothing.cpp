@@ -109,17 +109,42 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cs
     return f;
   };
 
-  const SampleLayout layout = options.layout();
-  TrainingSet set;
-  for (const SvppObstacle& o : obstacles) {
-    // At an interior vertex of the path the side is taken across the mean of the two segments' normals.
-    const Nearest n = path.nearest(o.centroid);
+  // +1 right of (3-D: on the normal's side of) the path; at an interior vertex across the mean of the
+  // two segments' normals.
+  const auto sideOf = [&](const Eigen::VectorXd& p) {
+    const Nearest n = path.nearest(p);
     Eigen::VectorXd normal = sideNormal(n.segment);
     if (n.t >= 1 && n.segment + 1 < path.segments()) normal += sideNormal(n.segment + 1);
     if (n.t <= 0 && n.segment > 0) normal += sideNormal(n.segment - 1);
-    const double label = normal.dot(o.centroid - n.point) > 0 ? 1 : -1;
+    return normal.dot(p - n.point) > 0 ? 1.0 : -1.0;
+  };
+  const SampleLayout layout = options.layout();
+  TrainingSet set;
+  for (const SvppObstacle& o : obstacles) {
+    const double label = sideOf(o.centroid);
     for (Eigen::Index i = 0; i < o.samples.cols(); ++i) set.add(o.samples.col(i), label, SampleKind::kObstacle);
   }
+  // The space's walls as obstacles too (a path along a wall would otherwise have its separating
+  // surface midway between the path's neighbours, outside the space): samples every d_p on the
+  // boundary (every 2 d_p in 3-D), each labelled by its own side of the path.
+  const Eigen::VectorXd& lower = space.lower();
+  const Eigen::VectorXd& upper = space.upper();
+  const double wall_spacing = (dim == 2 ? 1 : 2) * layout.guide_spacing;
+  std::vector<int> counts(dim);
+  for (int k = 0; k < dim; ++k)
+    counts[k] = std::max(1, static_cast<int>(std::ceil((upper[k] - lower[k]) / wall_spacing)));
+  for (int k = 0; k < dim; ++k)  // the two walls across axis k
+    for (const double wall : {lower[k], upper[k]}) {
+      const int a = (k + 1) % dim, b = (k + 2) % dim;
+      for (int i = 0; i <= counts[a]; ++i)
+        for (int j = 0; j <= (dim == 3 ? counts[b] : 0); ++j) {
+          Eigen::VectorXd p(dim);
+          p[k] = wall;
+          p[a] = lower[a] + (upper[a] - lower[a]) * i / counts[a];
+          if (dim == 3) p[b] = lower[b] + (upper[b] - lower[b]) * j / counts[b];
+          set.add(p, sideOf(p), SampleKind::kVirtual);
+        }
+    }
   addVirtualSamplesAt(frameAt(start, 0), 0, layout, set);
   addVirtualSamplesAt(frameAt(goal, path.segments() - 1), 0, layout, set);
   const int strip = dim == 3 ? 4 : 0;  // guides across the ribbon: -4..4 spacings in 3-D
@@ -130,6 +155,7 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cs
       for (const double sign : {1.0, -1.0}) {
         const Eigen::VectorXd g = f.point(0, sign * layout.guide_distance, l * layout.guide_spacing);
         if (path.nearest(g).distance < 0.5 * layout.guide_distance) continue;  // across a bend
+        if ((g.array() < lower.array()).any() || (g.array() > upper.array()).any()) continue;  // beyond a wall
         bool inside = false;
         for (const SvppObstacle& o : obstacles)
           for (const ConvexPart& part : o.parts) inside = inside || part.containsStrictly(g, 0);

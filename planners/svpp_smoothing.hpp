@@ -6,9 +6,12 @@
 //   - each merged obstacle is labelled by the side of the path its centroid lies on (2-D: right of the
 //     nearest segment is positive; 3-D: the side of the ribbon spanned along the path by the PCA
 //     normal of the obstacle vertices, made perpendicular to each segment),
-//   - virtual obstacles at start and goal across the first and last segments (as sec. III-B-2),
+//   - virtual obstacles at start and goal across the first and last segments (as sec. III-B-2), and
+//     the space's walls as obstacles (samples on the boundary labelled by their side of the path; not
+//     in the paper, whose paths stay clear of the walls),
 //   - guide samples every d_p along the path at +-d_g from it (3-D: a strip of 9 across the ribbon),
-//     dropped where a bend brings them closer than d_g / 2 to the path or inside an obstacle,
+//     dropped where a bend brings them closer than d_g / 2 to the path, inside an obstacle or beyond
+//     a wall,
 //   - the RBF SVM of the planner's parameters and the surface followed from start to goal (2-D: the
 //     arc search of Fig. 3; 3-D: the plane fit of Fig. 5, heading for the point d_g ahead on the
 //     given path),
