@@ -35,7 +35,8 @@ std::vector<double> spaced(double lo, double hi, double spacing) {
 }
 
 Eigen::VectorXd anyPerpendicular(const Eigen::Vector3d& u) {
-  const Eigen::Vector3d trial = std::abs(u.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d trial =
+      std::abs(u.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   return (trial - trial.dot(u) * u).normalized();
 }
 
@@ -48,7 +49,8 @@ Eigen::VectorXd NominalFrame::point(double t, double side_offset, double lateral
 }
 
 NominalFrame nominalLine(const Eigen::VectorXd& start, const Eigen::VectorXd& goal) {
-  if (start.size() != 2 || goal.size() != 2) throw std::invalid_argument("svpp: the nominal line is 2-D");
+  if (start.size() != 2 || goal.size() != 2)
+    throw std::invalid_argument("svpp: the nominal line is 2-D");
   NominalFrame f;
   f.origin = start;
   f.length = (goal - start).norm();
@@ -58,8 +60,10 @@ NominalFrame nominalLine(const Eigen::VectorXd& start, const Eigen::VectorXd& go
   return f;
 }
 
-NominalFrame nominalPlane(const Eigen::VectorXd& start, const Eigen::VectorXd& goal, const Eigen::MatrixXd& vertices) {
-  if (start.size() != 3 || goal.size() != 3) throw std::invalid_argument("svpp: the nominal plane is 3-D");
+NominalFrame nominalPlane(const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+                          const Eigen::MatrixXd& vertices) {
+  if (start.size() != 3 || goal.size() != 3)
+    throw std::invalid_argument("svpp: the nominal plane is 3-D");
   NominalFrame f;
   f.origin = start;
   f.length = (goal - start).norm();
@@ -72,9 +76,12 @@ NominalFrame nominalPlane(const Eigen::VectorXd& start, const Eigen::VectorXd& g
     const Eigen::Matrix3d projector = Eigen::Matrix3d::Identity() - u * u.transpose();
     const Eigen::Matrix3Xd p = projector * vertices;
     const Eigen::Matrix3Xd centred = p.colwise() - p.rowwise().mean();
-    const Eigen::Matrix3d covariance = centred * centred.transpose() / static_cast<double>(vertices.cols());
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);  // ascending eigenvalues
-    if (eigen.eigenvalues()[2] > 1e-12) normal = (projector * eigen.eigenvectors().col(2)).normalized();
+    const Eigen::Matrix3d covariance =
+        centred * centred.transpose() / static_cast<double>(vertices.cols());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(
+        covariance);  // ascending eigenvalues
+    if (eigen.eigenvalues()[2] > 1e-12)
+      normal = (projector * eigen.eigenvectors().col(2)).normalized();
   }
   // A sign fixed by the data, not by the eigen solver: the normal's largest coordinate is positive.
   Eigen::Index largest = 0;
@@ -108,7 +115,8 @@ void addVirtualSamples(const NominalFrame& frame, const SampleLayout& layout, Tr
   addVirtualSamplesAt(frame, frame.length, layout, set);
 }
 
-void addVirtualSamplesAt(const NominalFrame& frame, double t_end, const SampleLayout& layout, TrainingSet& set) {
+void addVirtualSamplesAt(const NominalFrame& frame, double t_end, const SampleLayout& layout,
+                         TrainingSet& set) {
   const int n = layout.virtual_samples;
   const double d = layout.virtual_distance;
   for (int i = 0; i < n; ++i)
@@ -120,9 +128,9 @@ void addVirtualSamplesAt(const NominalFrame& frame, double t_end, const SampleLa
     }
 }
 
-void addGuideSamples(const NominalFrame& frame, const std::vector<SvppObstacle>& obstacles, const Pattern& pattern,
-                     const SampleLayout& layout, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                     TrainingSet& set) {
+void addGuideSamples(const NominalFrame& frame, const std::vector<SvppObstacle>& obstacles,
+                     const Pattern& pattern, const SampleLayout& layout,
+                     const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, TrainingSet& set) {
   const double dg = layout.guide_distance;
   std::vector<Extent> extents;
   for (const SvppObstacle& o : obstacles) extents.push_back(extentOf(o, frame));
@@ -132,7 +140,8 @@ void addGuideSamples(const NominalFrame& frame, const std::vector<SvppObstacle>&
     double l_lo = 1e300, l_hi = -1e300;
     for (int c = 0; c < 8; ++c) {  // the bounds' corners, written out (GCC 12 misreads Eigen here)
       double l = 0;
-      for (int k = 0; k < 3; ++k) l += frame.across[k] * ((c >> k & 1 ? upper[k] + dg : lower[k] - dg) - frame.origin[k]);
+      for (int k = 0; k < 3; ++k)
+        l += frame.across[k] * ((c >> k & 1 ? upper[k] + dg : lower[k] - dg) - frame.origin[k]);
       l_lo = std::min(l_lo, l), l_hi = std::max(l_hi, l);
     }
     ls = spaced(l_lo, l_hi, layout.guide_spacing);
@@ -157,8 +166,9 @@ void addGuideSamples(const NominalFrame& frame, const std::vector<SvppObstacle>&
       }
 }
 
-TrainingSet patternTrainingSet(const NominalFrame& frame, const std::vector<SvppObstacle>& obstacles,
-                               const Pattern& pattern, const SampleLayout& layout, const Eigen::VectorXd& lower,
+TrainingSet patternTrainingSet(const NominalFrame& frame,
+                               const std::vector<SvppObstacle>& obstacles, const Pattern& pattern,
+                               const SampleLayout& layout, const Eigen::VectorXd& lower,
                                const Eigen::VectorXd& upper) {
   TrainingSet set;
   for (size_t k = 0; k < obstacles.size(); ++k)

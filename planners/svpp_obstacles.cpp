@@ -15,7 +15,8 @@ std::pair<double, double> interval(const Eigen::MatrixXd& vertices, const Eigen:
   return {p.minCoeff(), p.maxCoeff()};
 }
 
-bool separatedAlong(const ConvexPart& a, const ConvexPart& b, const Eigen::VectorXd& axis, double tolerance) {
+bool separatedAlong(const ConvexPart& a, const ConvexPart& b, const Eigen::VectorXd& axis,
+                    double tolerance) {
   const auto [a_lo, a_hi] = interval(a.vertices, axis);
   const auto [b_lo, b_hi] = interval(b.vertices, axis);
   return a_hi < b_lo - tolerance || b_hi < a_lo - tolerance;
@@ -29,10 +30,16 @@ int findRoot(std::vector<int>& parent, int i) {
 // The shape grown by `r` in every direction (exact for spheres, capsules and boxes' faces).
 robots::Shape inflated(robots::Shape shape, double r) {
   switch (shape.kind) {
-    case robots::ShapeKind::kBox: shape.dims.array() += 2 * r; break;
+    case robots::ShapeKind::kBox:
+      shape.dims.array() += 2 * r;
+      break;
     case robots::ShapeKind::kSphere:
-    case robots::ShapeKind::kCapsule: shape.dims.x() += r; break;
-    case robots::ShapeKind::kCylinder: shape.dims.x() += r, shape.dims.y() += 2 * r; break;
+    case robots::ShapeKind::kCapsule:
+      shape.dims.x() += r;
+      break;
+    case robots::ShapeKind::kCylinder:
+      shape.dims.x() += r, shape.dims.y() += 2 * r;
+      break;
   }
   return shape;
 }
@@ -41,10 +48,14 @@ robots::Shape inflated(robots::Shape shape, double r) {
 Eigen::Vector3d boundingSides(const robots::Shape& shape) {
   const Eigen::Vector3d& d = shape.dims;
   switch (shape.kind) {
-    case robots::ShapeKind::kBox: return d;
-    case robots::ShapeKind::kSphere: return Eigen::Vector3d::Constant(2 * d.x());
-    case robots::ShapeKind::kCylinder: return {2 * d.x(), 2 * d.x(), d.y()};
-    case robots::ShapeKind::kCapsule: return {2 * d.x(), 2 * d.x(), d.y() + 2 * d.x()};
+    case robots::ShapeKind::kBox:
+      return d;
+    case robots::ShapeKind::kSphere:
+      return Eigen::Vector3d::Constant(2 * d.x());
+    case robots::ShapeKind::kCylinder:
+      return {2 * d.x(), 2 * d.x(), d.y()};
+    case robots::ShapeKind::kCapsule:
+      return {2 * d.x(), 2 * d.x(), d.y() + 2 * d.x()};
   }
   return d;
 }
@@ -80,7 +91,8 @@ ConvexPart polygonPart(const Eigen::Matrix2Xd& v, int obstacle_id) {
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d a = v.col(i), b = v.col((i + 1) % n);
     part.edges.emplace_back(i, (i + 1) % n);
-    const Eigen::Vector2d normal = Eigen::Vector2d(b.y() - a.y(), a.x() - b.x()).normalized();  // outward (ccw)
+    const Eigen::Vector2d normal =
+        Eigen::Vector2d(b.y() - a.y(), a.x() - b.x()).normalized();  // outward (ccw)
     part.normals.col(i) = normal;
     part.offsets[i] = normal.dot(a);
     const double cross = a.x() * b.y() - b.x() * a.y();
@@ -92,8 +104,8 @@ ConvexPart polygonPart(const Eigen::Matrix2Xd& v, int obstacle_id) {
   return part;
 }
 
-ConvexPart boxPart(const Eigen::Vector3d& centre, const Eigen::Matrix3d& axes, const Eigen::Vector3d& sides,
-                   int obstacle_id) {
+ConvexPart boxPart(const Eigen::Vector3d& centre, const Eigen::Matrix3d& axes,
+                   const Eigen::Vector3d& sides, int obstacle_id) {
   ConvexPart part;
   part.obstacle_id = obstacle_id;
   part.vertices.resize(3, 8);
@@ -132,8 +144,8 @@ bool partsOverlap(const ConvexPart& a, const ConvexPart& b, double tolerance) {
   if (a.dim() == 3)
     for (Eigen::Index i = 0; i < a.edge_directions.cols(); ++i)
       for (Eigen::Index j = 0; j < b.edge_directions.cols(); ++j) {
-        const Eigen::Vector3d axis =
-            Eigen::Vector3d(a.edge_directions.col(i)).cross(Eigen::Vector3d(b.edge_directions.col(j)));
+        const Eigen::Vector3d axis = Eigen::Vector3d(a.edge_directions.col(i))
+                                         .cross(Eigen::Vector3d(b.edge_directions.col(j)));
         if (axis.norm() > 1e-9 && separatedAlong(a, b, axis.normalized(), tolerance)) return false;
       }
   return true;
@@ -169,7 +181,8 @@ std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts) {
         candidates.push_back(part.vertices.col(v));
         vertices.push_back(part.vertices.col(v));
       }
-      for (const auto& [i, j] : part.edges) candidates.push_back(0.5 * (part.vertices.col(i) + part.vertices.col(j)));
+      for (const auto& [i, j] : part.edges)
+        candidates.push_back(0.5 * (part.vertices.col(i) + part.vertices.col(j)));
       for (const auto& face : part.faces) {
         Eigen::VectorXd centre = Eigen::VectorXd::Zero(dim);
         for (int v : face) centre += part.vertices.col(v);
@@ -189,8 +202,10 @@ std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts) {
   return merged;
 }
 
-std::vector<ConvexPart> obstacleParts(const cspace::Environment& environment, int dim, double inflate) {
-  if (dim != 2 && dim != 3) throw std::invalid_argument("svpp: obstacles in 2-D or 3-D only, got " + std::to_string(dim));
+std::vector<ConvexPart> obstacleParts(const cspace::Environment& environment, int dim,
+                                      double inflate) {
+  if (dim != 2 && dim != 3)
+    throw std::invalid_argument("svpp: obstacles in 2-D or 3-D only, got " + std::to_string(dim));
   std::vector<ConvexPart> parts;
   for (const cspace::Obstacle& o : environment.obstacles()) {
     if (o.is_virtual) continue;
@@ -201,7 +216,8 @@ std::vector<ConvexPart> obstacleParts(const cspace::Environment& environment, in
       for (size_t i = 0; i < outline.size(); ++i) v.col(static_cast<Eigen::Index>(i)) = outline[i];
       parts.push_back(polygonPart(v, o.id));
     } else {
-      parts.push_back(boxPart(shape.pose.translation(), shape.pose.linear(), boundingSides(shape), o.id));
+      parts.push_back(
+          boxPart(shape.pose.translation(), shape.pose.linear(), boundingSides(shape), o.id));
     }
   }
   return parts;

@@ -15,17 +15,18 @@
 
 namespace svmp::planners {
 
-// A convex polygon (2-D) or polyhedron (3-D) as vertices, the edges and faces drawn between them, and
-// the outward face normals with offsets (n . x <= offset inside) for containment and overlap tests.
+// A convex polygon (2-D) or polyhedron (3-D) as vertices, the edges and faces drawn between them,
+// and the outward face normals with offsets (n . x <= offset inside) for containment and overlap
+// tests.
 struct ConvexPart {
-  int obstacle_id = 0;                    // the environment obstacle it came from
-  Eigen::MatrixXd vertices;               // dim x n
-  std::vector<std::pair<int, int>> edges; // vertex index pairs
-  std::vector<std::vector<int>> faces;    // 3-D only: vertex indices of each face
-  Eigen::MatrixXd normals;                // dim x faces (2-D: one per edge)
+  int obstacle_id = 0;                     // the environment obstacle it came from
+  Eigen::MatrixXd vertices;                // dim x n
+  std::vector<std::pair<int, int>> edges;  // vertex index pairs
+  std::vector<std::vector<int>> faces;     // 3-D only: vertex indices of each face
+  Eigen::MatrixXd normals;                 // dim x faces (2-D: one per edge)
   Eigen::VectorXd offsets;
-  Eigen::MatrixXd edge_directions;        // 3-D: the distinct edge directions (cross products in SAT)
-  double measure = 0;                     // area (2-D) or volume (3-D)
+  Eigen::MatrixXd edge_directions;  // 3-D: the distinct edge directions (cross products in SAT)
+  double measure = 0;               // area (2-D) or volume (3-D)
   Eigen::VectorXd centroid;
 
   int dim() const { return static_cast<int>(vertices.rows()); }
@@ -36,8 +37,8 @@ struct ConvexPart {
 // Counter-clockwise convex polygon (2 x n) as a part.
 ConvexPart polygonPart(const Eigen::Matrix2Xd& ccw_vertices, int obstacle_id = 0);
 // A box of full sides `sides`, centre `centre` and orientation `axes` (columns: its local x, y, z).
-ConvexPart boxPart(const Eigen::Vector3d& centre, const Eigen::Matrix3d& axes, const Eigen::Vector3d& sides,
-                   int obstacle_id = 0);
+ConvexPart boxPart(const Eigen::Vector3d& centre, const Eigen::Matrix3d& axes,
+                   const Eigen::Vector3d& sides, int obstacle_id = 0);
 
 // True when the parts intersect or touch (gap <= tolerance), by the separating axis theorem.
 bool partsOverlap(const ConvexPart& a, const ConvexPart& b, double tolerance = 1e-9);
@@ -52,12 +53,13 @@ struct SvppObstacle {
   Eigen::MatrixXd vertices;  // dim x (all vertices of all parts)
 };
 
-// Merges overlapping parts (union-find over partsOverlap) and makes each group's samples. Groups are
-// ordered by their smallest environment id.
+// Merges overlapping parts (union-find over partsOverlap) and makes each group's samples. Groups
+// are ordered by their smallest environment id.
 std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts);
 
 // The real (not virtual) obstacles of `environment` as parts in a `dim`-dimensional space (2 or 3),
 // grown by `inflate` (the point robot's radius). Throws std::invalid_argument for another dim.
-std::vector<ConvexPart> obstacleParts(const cspace::Environment& environment, int dim, double inflate);
+std::vector<ConvexPart> obstacleParts(const cspace::Environment& environment, int dim,
+                                      double inflate);
 
 }  // namespace svmp::planners

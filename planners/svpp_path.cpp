@@ -7,26 +7,32 @@
 namespace svmp::planners {
 namespace {
 
-constexpr int kArcSamples = 25;     // points on the 2-D search arc (5 deg apart over 120 deg)
+constexpr int kArcSamples = 25;  // points on the 2-D search arc (5 deg apart over 120 deg)
 constexpr int kBisections = 30;
-constexpr int kCirclePoints = 8;    // plane points of the 3-D fit
+constexpr int kCirclePoints = 8;  // plane points of the 3-D fit
 constexpr int kNewtonSteps = 6;
 
-double decision(const svm::BinaryModel& model, const Eigen::VectorXd& p) { return model.decision(p.data()); }
+double decision(const svm::BinaryModel& model, const Eigen::VectorXd& p) {
+  return model.decision(p.data());
+}
 
 bool inside(const Eigen::VectorXd& p, const SurfaceFollowing& o) {
   return (p.array() >= o.lower.array()).all() && (p.array() <= o.upper.array()).all();
 }
 
 // Appends p; false (with the status set) when the search must end there. The length so far plus the
-// straight distance left is a lower bound on the final length, so a path is cut as soon as it exceeds
-// max_length.
-bool advance(FollowResult& r, const Eigen::VectorXd& p, const Eigen::VectorXd& goal, const SurfaceFollowing& o) {
+// straight distance left is a lower bound on the final length, so a path is cut as soon as it
+// exceeds max_length.
+bool advance(FollowResult& r, const Eigen::VectorXd& p, const Eigen::VectorXd& goal,
+             const SurfaceFollowing& o) {
   r.length += (p - r.path.back()).norm();
   r.path.push_back(p);
-  if (!inside(p, o)) r.status = FollowStatus::kLeftSpace;
-  else if (r.length + (goal - p).norm() > o.max_length) r.status = FollowStatus::kTooLong;
-  else return true;
+  if (!inside(p, o))
+    r.status = FollowStatus::kLeftSpace;
+  else if (r.length + (goal - p).norm() > o.max_length)
+    r.status = FollowStatus::kTooLong;
+  else
+    return true;
   return false;
 }
 
@@ -46,14 +52,17 @@ bool closeToGoal(FollowResult& r, const Eigen::VectorXd& goal, const SurfaceFoll
 
 // An orthonormal pair spanning the plane with unit normal n.
 std::pair<Eigen::Vector3d, Eigen::Vector3d> planeBasis(const Eigen::Vector3d& n) {
-  const Eigen::Vector3d trial = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d trial =
+      std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d e1 = (trial - trial.dot(n) * n).normalized();
   return {e1, n.cross(e1)};
 }
 
-// Sum over points on the circle of radius r in the plane (p, n) of their distance to V = 0, to first
-// order |V(x)| / |grad V(p)|; the gradient norm at p is one factor for all planes, so it is left out.
-double fitCost(const svm::BinaryModel& model, const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r) {
+// Sum over points on the circle of radius r in the plane (p, n) of their distance to V = 0, to
+// first order |V(x)| / |grad V(p)|; the gradient norm at p is one factor for all planes, so it is
+// left out.
+double fitCost(const svm::BinaryModel& model, const Eigen::Vector3d& p, const Eigen::Vector3d& n,
+               double r) {
   const auto [e1, e2] = planeBasis(n);
   double cost = 0;
   for (int k = 0; k < kCirclePoints; ++k) {
@@ -68,17 +77,23 @@ double fitCost(const svm::BinaryModel& model, const Eigen::Vector3d& p, const Ei
 
 const char* followStatusName(FollowStatus status) {
   switch (status) {
-    case FollowStatus::kReached: return "reached the goal";
-    case FollowStatus::kNoSafePoint: return "no next point with |V| < 1";
-    case FollowStatus::kStepLimit: return "step limit";
-    case FollowStatus::kLeftSpace: return "left the space";
-    case FollowStatus::kTooLong: return "longer than a path already found";
+    case FollowStatus::kReached:
+      return "reached the goal";
+    case FollowStatus::kNoSafePoint:
+      return "no next point with |V| < 1";
+    case FollowStatus::kStepLimit:
+      return "step limit";
+    case FollowStatus::kLeftSpace:
+      return "left the space";
+    case FollowStatus::kTooLong:
+      return "longer than a path already found";
   }
   return "?";
 }
 
-FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
-                             const Eigen::VectorXd& heading, const SurfaceFollowing& o) {
+FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorXd& start,
+                             const Eigen::VectorXd& goal, const Eigen::VectorXd& heading,
+                             const SurfaceFollowing& o) {
   FollowResult r;
   r.path = {start};
   double direction = std::atan2(heading.y(), heading.x());
@@ -101,11 +116,14 @@ FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorX
       double lo = angles[k], hi = angles[k + 1], v_lo = values[k];
       for (int b = 0; b < kBisections; ++b) {
         const double mid = 0.5 * (lo + hi), v = decision(model, arcPoint(mid));
-        if ((v > 0) == (v_lo > 0)) lo = mid, v_lo = v;
-        else hi = mid;
+        if ((v > 0) == (v_lo > 0))
+          lo = mid, v_lo = v;
+        else
+          hi = mid;
       }
       const double angle = 0.5 * (lo + hi);
-      if (std::abs(angle - direction) < best_offset) best_offset = std::abs(angle - direction), best_angle = angle;
+      if (std::abs(angle - direction) < best_offset)
+        best_offset = std::abs(angle - direction), best_angle = angle;
       found = true;
     }
     if (!found) {
@@ -125,11 +143,14 @@ FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorX
   return r;
 }
 
-Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vector3d& p, double radius) {
+Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vector3d& p,
+                                double radius) {
   Eigen::Vector3d grad;
   model.decisionAndGradient(p.data(), grad.data());
-  Eigen::Vector3d normal = grad.norm() > 1e-12 ? Eigen::Vector3d(grad.normalized()) : Eigen::Vector3d::UnitZ();
-  // Pitch and roll about the current normal on 3 x 3 grids of shrinking span (+-20, +-6.7, +-2.2 deg).
+  Eigen::Vector3d normal =
+      grad.norm() > 1e-12 ? Eigen::Vector3d(grad.normalized()) : Eigen::Vector3d::UnitZ();
+  // Pitch and roll about the current normal on 3 x 3 grids of shrinking span (+-20, +-6.7, +-2.2
+  // deg).
   double span = std::numbers::pi / 9;
   double best = fitCost(model, p, normal, radius);
   for (int level = 0; level < 3; ++level, span /= 3) {
@@ -138,7 +159,8 @@ Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vect
     for (int i = -1; i <= 1; ++i)
       for (int j = -1; j <= 1; ++j) {
         if (i == 0 && j == 0) continue;
-        const Eigen::Vector3d n = (normal + std::tan(span * i) * e1 + std::tan(span * j) * e2).normalized();
+        const Eigen::Vector3d n =
+            (normal + std::tan(span * i) * e1 + std::tan(span * j) * e2).normalized();
         const double cost = fitCost(model, p, n, radius);
         if (cost < best) best = cost, best_normal = n;
       }
@@ -147,7 +169,8 @@ Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vect
   return normal;
 }
 
-FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorXd& start,
+                             const Eigen::VectorXd& goal,
                              const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& target,
                              const SurfaceFollowing& o) {
   FollowResult r;

@@ -26,8 +26,8 @@
 namespace svmp::planners {
 
 struct SurfaceFollowing {
-  double step = 0.05;           // d_s
-  double search_angle = 2.0944; // theta_s in radians (120 deg)
+  double step = 0.05;            // d_s
+  double search_angle = 2.0944;  // theta_s in radians (120 deg)
   int max_steps = 500;
   double max_length = std::numeric_limits<double>::infinity();
   Eigen::VectorXd lower, upper;  // the space's bounds
@@ -44,16 +44,19 @@ struct FollowResult {
 };
 
 // `heading`: the initial direction of travel (the nominal line's direction).
-FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
-                             const Eigen::VectorXd& heading, const SurfaceFollowing& options);
+FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorXd& start,
+                             const Eigen::VectorXd& goal, const Eigen::VectorXd& heading,
+                             const SurfaceFollowing& options);
 
-// `target(p)`: the point to head for from p (the goal for the planner; a point ahead on the given path
-// for smoothing); the search ends at `goal`.
-FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+// `target(p)`: the point to head for from p (the goal for the planner; a point ahead on the given
+// path for smoothing); the search ends at `goal`.
+FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorXd& start,
+                             const Eigen::VectorXd& goal,
                              const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& target,
                              const SurfaceFollowing& options);
 
 // The local plane fit of Fig. 5 at p: the unit normal of the best plane (exposed for tests).
-Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vector3d& p, double radius);
+Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vector3d& p,
+                                double radius);
 
 }  // namespace svmp::planners

@@ -32,12 +32,13 @@ SvppOptions SvppOptions::fromParameters(const cspace::ParameterSet& params) {
 
 std::string SvppOptions::validate() const {
   std::ostringstream why;
-  if (virtual_samples < 1) why << "virtual_samples must be >= 1, got " << virtual_samples;
+  if (virtual_samples < 1)
+    why << "virtual_samples must be >= 1, got " << virtual_samples;
   else if (!(virtual_distance > 0 && guide_distance > 0 && guide_spacing > 0 && step > 0))
     why << "virtual_distance, guide_distance, guide_spacing and step must be positive";
   else if (!(guide_distance > virtual_distance))
-    why << "guide_distance (" << guide_distance << ") must exceed virtual_distance (" << virtual_distance
-        << "): the guides wrap the virtual obstacles";
+    why << "guide_distance (" << guide_distance << ") must exceed virtual_distance ("
+        << virtual_distance << "): the guides wrap the virtual obstacles";
   else if (patterns < 0 || max_patterns < 1 || max_steps < 0)
     why << "patterns and max_steps must be >= 0, max_patterns >= 1";
   else if (patterns > max_patterns)
@@ -74,15 +75,18 @@ svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, 
   return svm::BinaryModel::fromSolution(set.X, set.y, solution, kernel);
 }
 
-SVMP_REGISTER_PLANNER("svpp", [](const PlanningContext& context, const cspace::ParameterSet& params) {
-  const SvppOptions o = SvppOptions::fromParameters(params);
-  if (const std::string why = o.validate(); !why.empty()) throw cspace::ScenarioError("planners.svpp: " + why);
-  return std::make_unique<SvppPlanner>(context, o);
-});
+SVMP_REGISTER_PLANNER("svpp",
+                      [](const PlanningContext& context, const cspace::ParameterSet& params) {
+                        const SvppOptions o = SvppOptions::fromParameters(params);
+                        if (const std::string why = o.validate(); !why.empty())
+                          throw cspace::ScenarioError("planners.svpp: " + why);
+                        return std::make_unique<SvppPlanner>(context, o);
+                      });
 
 SvppPlanner::SvppPlanner(const PlanningContext& context, SvppOptions options)
     : Planner(context), options_(options) {
-  if (const std::string why = options_.validate(); !why.empty()) throw std::invalid_argument("svpp: " + why);
+  if (const std::string why = options_.validate(); !why.empty())
+    throw std::invalid_argument("svpp: " + why);
 }
 
 void SvppPlanner::clear() {
@@ -113,7 +117,8 @@ void SvppPlanner::buildRoadmap(std::uint64_t, const Termination&, PlanResult& re
                      context_.checker.robot().name() + "'";
     return;
   }
-  obstacles_ = mergeObstacles(obstacleParts(context_.checker.environment(), point->dof(), point->radius()));
+  obstacles_ =
+      mergeObstacles(obstacleParts(context_.checker.environment(), point->dof(), point->radius()));
   result.times.sampling_ms += msSince(t0);
   result.status = PlanStatus::kSolved;
 }
@@ -124,13 +129,14 @@ bool SvppPlanner::validPath(const std::vector<Eigen::VectorXd>& path) const {
   return true;
 }
 
-SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pattern, double best_length,
-                                  PhaseTimes& times) const {
+SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pattern,
+                                  double best_length, PhaseTimes& times) const {
   SvppTrial trial;
   trial.pattern = pattern;
   auto t0 = Clock::now();
   const auto& space = context_.space;
-  trial.samples = patternTrainingSet(trace_.frame, obstacles_, pattern, options_.layout(), space.lower(), space.upper());
+  trial.samples = patternTrainingSet(trace_.frame, obstacles_, pattern, options_.layout(),
+                                     space.lower(), space.upper());
   times.sampling_ms += msSince(t0);
   t0 = Clock::now();
   trial.model = trainSvppModel(trial.samples, options_.gamma, options_.C, options_.eps);
@@ -140,17 +146,20 @@ SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pat
   SurfaceFollowing following = options_.following(query, space.lower(), space.upper());
   following.max_length = best_length;
   if (space.dim() == 2)
-    trial.follow = followSurface2d(trial.model, query.start, query.goal, trace_.frame.along, following);
+    trial.follow =
+        followSurface2d(trial.model, query.start, query.goal, trace_.frame.along, following);
   else
     trial.follow = followSurface3d(
-        trial.model, query.start, query.goal, [&](const Eigen::VectorXd&) { return query.goal; }, following);
+        trial.model, query.start, query.goal, [&](const Eigen::VectorXd&) { return query.goal; },
+        following);
   trial.valid = trial.follow.reached() && validPath(trial.follow.path);
   trial.path_ms = msSince(t0);
   times.query_ms += trial.path_ms;
   return trial;
 }
 
-void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop, PlanResult& result) {
+void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+                         PlanResult& result) {
   if ((query.goal - query.start).norm() < 1e-12) {
     result.status = PlanStatus::kSolved;
     result.path = {query.start, query.goal};
@@ -163,9 +172,11 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     vertices.rightCols(o.vertices.cols()) = o.vertices;
   }
   trace_.obstacles = obstacles_;
-  trace_.frame = dim == 2 ? nominalLine(query.start, query.goal) : nominalPlane(query.start, query.goal, vertices);
+  trace_.frame = dim == 2 ? nominalLine(query.start, query.goal)
+                          : nominalPlane(query.start, query.goal, vertices);
 
-  // Patterns: the initial one, then a random walk flipping one obstacle at a time, new patterns only.
+  // Patterns: the initial one, then a random walk flipping one obstacle at a time, new patterns
+  // only.
   const int wanted = options_.patternsFor(dim);
   const int obstacles = static_cast<int>(obstacles_.size());
   const double distinct = std::ldexp(1.0, std::min(obstacles, 60));
@@ -173,7 +184,8 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   std::set<Pattern> tried;
   Pattern pattern = initialPattern(obstacles_, trace_.frame);
   double best_length = std::numeric_limits<double>::infinity();
-  while (static_cast<int>(tried.size()) < options_.max_patterns && static_cast<double>(tried.size()) < distinct) {
+  while (static_cast<int>(tried.size()) < options_.max_patterns &&
+         static_cast<double>(tried.size()) < distinct) {
     if (stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached after " + std::to_string(tried.size()) + " patterns";
@@ -181,7 +193,8 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     }
     tried.insert(pattern);
     trace_.trials.push_back(tryPattern(query, pattern, best_length, result.times));
-    if (trace_.trials.back().valid) best_length = std::min(best_length, trace_.trials.back().follow.length);
+    if (trace_.trials.back().valid)
+      best_length = std::min(best_length, trace_.trials.back().follow.length);
     if (static_cast<int>(tried.size()) >= wanted && std::isfinite(best_length)) break;
     if (obstacles == 0) break;
     std::uniform_int_distribution<int> pick(0, obstacles - 1);
@@ -224,7 +237,8 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   if (result.status == PlanStatus::kTimeout) return;
   std::map<std::string, int> reasons;
   for (const SvppTrial& t : trace_.trials)
-    ++reasons[t.follow.reached() ? (t.valid ? "not certified" : "in collision") : followStatusName(t.follow.status)];
+    ++reasons[t.follow.reached() ? (t.valid ? "not certified" : "in collision")
+                                 : followStatusName(t.follow.status)];
   std::ostringstream why;
   why << "no path in " << trace_.trials.size() << " patterns (";
   for (auto it = reasons.begin(); it != reasons.end(); ++it)

@@ -31,28 +31,31 @@ namespace svmp::planners {
 
 struct SvppOptions {
   static constexpr int kPaperPatterns2d = 20, kPaperPatterns3d = 10;
-  int virtual_samples = 3;          // N_v
-  double virtual_distance = 0.05;   // d_v
-  double guide_distance = 0.2;      // d_g
-  double guide_spacing = 0.1;       // d_p
-  int patterns = 0;                 // N_p; 0: the paper's, 20 in 2-D and 10 in 3-D
-  int max_patterns = 200;           // patterns tried at most while no path was found
-  double search_angle_deg = 120;    // theta_s
-  double step = 0.05;               // d_s
+  int virtual_samples = 3;         // N_v
+  double virtual_distance = 0.05;  // d_v
+  double guide_distance = 0.2;     // d_g
+  double guide_spacing = 0.1;      // d_p
+  int patterns = 0;                // N_p; 0: the paper's, 20 in 2-D and 10 in 3-D
+  int max_patterns = 200;          // patterns tried at most while no path was found
+  double search_angle_deg = 120;   // theta_s
+  double step = 0.05;              // d_s
   // Step limit of one surface following; 0: 3 |goal - start| / d_s (a path three times the straight
   // line's length; the paper gives no number).
   int max_steps = 0;
   // SVM^light's -g: k(a, b) = exp(-gamma |a - b|^2); the paper's "size of Gaussian kernel is 10".
   double gamma = 10;
-  double C = 1000;                  // soft-margin weight (the paper's gamma of eq. 6)
-  double eps = 1e-3;                // SMO stopping tolerance (SVM^light's default)
+  double C = 1000;    // soft-margin weight (the paper's gamma of eq. 6)
+  double eps = 1e-3;  // SMO stopping tolerance (SVM^light's default)
 
   static SvppOptions fromParameters(const cspace::ParameterSet& params);
   std::string validate() const;  // "" when usable
   bool operator==(const SvppOptions&) const = default;
-  int patternsFor(int dim) const { return patterns > 0 ? patterns : dim == 2 ? kPaperPatterns2d : kPaperPatterns3d; }
+  int patternsFor(int dim) const {
+    return patterns > 0 ? patterns : dim == 2 ? kPaperPatterns2d : kPaperPatterns3d;
+  }
   SampleLayout layout() const;
-  SurfaceFollowing following(const cspace::Query& query, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const;
+  SurfaceFollowing following(const cspace::Query& query, const Eigen::VectorXd& lower,
+                             const Eigen::VectorXd& upper) const;
 };
 
 // One obstacle pattern tried: its training set, SVM and surface following.
@@ -73,8 +76,8 @@ struct SvppTrace {
   int chosen = -1;  // index of the returned path's trial
 };
 
-// Trains the RBF SVM of one training set (per-sample C all equal). Throws std::invalid_argument when
-// the set has one class only.
+// Trains the RBF SVM of one training set (per-sample C all equal). Throws std::invalid_argument
+// when the set has one class only.
 svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, double eps);
 
 class SvppPlanner final : public Planner {
@@ -96,14 +99,15 @@ class SvppPlanner final : public Planner {
               PlanResult& result) override;
 
  private:
-  SvppTrial tryPattern(const cspace::Query& query, const Pattern& pattern, double best_length, PhaseTimes& times) const;
+  SvppTrial tryPattern(const cspace::Query& query, const Pattern& pattern, double best_length,
+                       PhaseTimes& times) const;
   bool validPath(const std::vector<Eigen::VectorXd>& path) const;
 
   SvppOptions options_;
   std::vector<SvppObstacle> obstacles_;
   SvppTrace trace_;
-  ObstacleSamples chosen_samples_;       // the returned pattern's samples (class 1 / 2), for pictures
-  std::optional<RiskFunction> chosen_;   // its SVM
+  ObstacleSamples chosen_samples_;  // the returned pattern's samples (class 1 / 2), for pictures
+  std::optional<RiskFunction> chosen_;  // its SVM
 };
 
 }  // namespace svmp::planners

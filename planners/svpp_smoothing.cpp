@@ -11,8 +11,8 @@ namespace {
 
 struct Nearest {
   int segment = 0;
-  double t = 0;      // position on the segment, 0..1
-  double arc = 0;    // arc length of the nearest point from the start
+  double t = 0;    // position on the segment, 0..1
+  double arc = 0;  // arc length of the nearest point from the start
   double distance = 1e300;
   Eigen::VectorXd point;
 };
@@ -20,7 +20,8 @@ struct Nearest {
 // The piecewise-linear path with its cumulative lengths.
 class Polyline {
  public:
-  explicit Polyline(std::vector<Eigen::VectorXd> points) : points_(std::move(points)), cumulative_{0} {
+  explicit Polyline(std::vector<Eigen::VectorXd> points)
+      : points_(std::move(points)), cumulative_{0} {
     for (size_t i = 1; i < points_.size(); ++i)
       cumulative_.push_back(cumulative_.back() + (points_[i] - points_[i - 1]).norm());
   }
@@ -43,10 +44,14 @@ class Polyline {
   // The point at arc length s (clamped to the ends) and its segment.
   std::pair<Eigen::VectorXd, int> at(double s) const {
     s = std::clamp(s, 0.0, length());
-    int i = static_cast<int>(std::upper_bound(cumulative_.begin(), cumulative_.end(), s) - cumulative_.begin()) - 1;
+    int i = static_cast<int>(std::upper_bound(cumulative_.begin(), cumulative_.end(), s) -
+                             cumulative_.begin()) -
+            1;
     i = std::clamp(i, 0, segments() - 1);
     const double span = cumulative_[i + 1] - cumulative_[i];
-    return {points_[i] + (span > 0 ? (s - cumulative_[i]) / span : 0.0) * (points_[i + 1] - points_[i]), i};
+    return {
+        points_[i] + (span > 0 ? (s - cumulative_[i]) / span : 0.0) * (points_[i + 1] - points_[i]),
+        i};
   }
 
  private:
@@ -63,9 +68,10 @@ std::vector<Eigen::VectorXd> withoutRepeats(const std::vector<Eigen::VectorXd>& 
 
 }  // namespace
 
-SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cspace::ValidityChecker& checker,
-                             const cspace::MotionValidator& certifier, const cspace::ConfigurationSpace& space,
-                             const SvppOptions& options) {
+SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
+                             const cspace::ValidityChecker& checker,
+                             const cspace::MotionValidator& certifier,
+                             const cspace::ConfigurationSpace& space, const SvppOptions& options) {
   SvmSmoothing out;
   out.path = given;
   const auto* point = dynamic_cast<const robots::PointRobot*>(&checker.robot());
@@ -83,7 +89,8 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cs
       mergeObstacles(obstacleParts(checker.environment(), dim, point->radius()));
   const Eigen::VectorXd start = given.front(), goal = given.back();
 
-  // The side normal of each segment: 2-D its right normal; 3-D the PCA plane normal made perpendicular.
+  // The side normal of each segment: 2-D its right normal; 3-D the PCA plane normal made
+  // perpendicular.
   Eigen::VectorXd plane_normal;
   if (dim == 3) {
     Eigen::MatrixXd vertices(3, 0);
@@ -91,7 +98,10 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cs
       vertices.conservativeResize(3, vertices.cols() + o.vertices.cols());
       vertices.rightCols(o.vertices.cols()) = o.vertices;
     }
-    plane_normal = nominalPlane(start, (goal - start).norm() > 1e-12 ? goal : start + path.direction(0), vertices).normal;
+    plane_normal =
+        nominalPlane(start, (goal - start).norm() > 1e-12 ? goal : start + path.direction(0),
+                     vertices)
+            .normal;
   }
   const auto sideNormal = [&](int i) -> Eigen::VectorXd {
     const Eigen::VectorXd d = path.direction(i);
@@ -109,8 +119,8 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cs
     return f;
   };
 
-  // +1 right of (3-D: on the normal's side of) the path; at an interior vertex across the mean of the
-  // two segments' normals.
+  // +1 right of (3-D: on the normal's side of) the path; at an interior vertex across the mean of
+  // the two segments' normals.
   const auto sideOf = [&](const Eigen::VectorXd& p) {
     const Nearest n = path.nearest(p);
     Eigen::VectorXd normal = sideNormal(n.segment);
@@ -122,7 +132,8 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cs
   TrainingSet set;
   for (const SvppObstacle& o : obstacles) {
     const double label = sideOf(o.centroid);
-    for (Eigen::Index i = 0; i < o.samples.cols(); ++i) set.add(o.samples.col(i), label, SampleKind::kObstacle);
+    for (Eigen::Index i = 0; i < o.samples.cols(); ++i)
+      set.add(o.samples.col(i), label, SampleKind::kObstacle);
   }
   // The space's walls as obstacles too (a path along a wall would otherwise have its separating
   // surface midway between the path's neighbours, outside the space): samples every d_p on the
@@ -153,9 +164,11 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cs
     const NominalFrame f = frameAt(p, segment);
     for (int l = -strip; l <= strip; ++l)
       for (const double sign : {1.0, -1.0}) {
-        const Eigen::VectorXd g = f.point(0, sign * layout.guide_distance, l * layout.guide_spacing);
+        const Eigen::VectorXd g =
+            f.point(0, sign * layout.guide_distance, l * layout.guide_spacing);
         if (path.nearest(g).distance < 0.5 * layout.guide_distance) continue;  // across a bend
-        if ((g.array() < lower.array()).any() || (g.array() > upper.array()).any()) continue;  // beyond a wall
+        if ((g.array() < lower.array()).any() || (g.array() > upper.array()).any())
+          continue;  // beyond a wall
         bool inside = false;
         for (const SvppObstacle& o : obstacles)
           for (const ConvexPart& part : o.parts) inside = inside || part.containsStrictly(g, 0);
@@ -176,7 +189,9 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given, const cs
       dim == 2 ? followSurface2d(model, start, goal, path.direction(0), following)
                : followSurface3d(
                      model, start, goal,
-                     [&](const Eigen::VectorXd& p) { return path.at(path.nearest(p).arc + layout.guide_distance).first; },
+                     [&](const Eigen::VectorXd& p) {
+                       return path.at(path.nearest(p).arc + layout.guide_distance).first;
+                     },
                      following);
   if (!follow.reached()) {
     out.why = std::string("surface following: ") + followStatusName(follow.status);

@@ -30,13 +30,15 @@ namespace svmp::planners {
 struct SvmSmoothing {
   std::vector<Eigen::VectorXd> path;  // the smoothed path, or the given one when smoothing failed
   bool smoothed = false;
-  std::string why;                    // when not smoothed
+  std::string why;  // when not smoothed
   int support_vectors = 0;
 };
 
-// `path` runs from start to goal; `certifier` proves the smoothed path (a CertifiedMotionValidator).
-SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& path, const cspace::ValidityChecker& checker,
-                             const cspace::MotionValidator& certifier, const cspace::ConfigurationSpace& space,
-                             const SvppOptions& options);
+// `path` runs from start to goal; `certifier` proves the smoothed path (a
+// CertifiedMotionValidator).
+SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& path,
+                             const cspace::ValidityChecker& checker,
+                             const cspace::MotionValidator& certifier,
+                             const cspace::ConfigurationSpace& space, const SvppOptions& options);
 
 }  // namespace svmp::planners

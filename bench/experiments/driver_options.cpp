@@ -32,7 +32,7 @@ const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
          "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify [svpp]]\n"
          "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--check]\n"
-         "  --planners  comma-separated: svmp, prm, local, ompl-prm, ompl-lazyprm, ompl-rrtconnect\n"
+         "  --planners  comma-separated: svmp, prm, local, svpp, ompl-prm, ompl-lazyprm, ompl-rrtconnect\n"
          "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
          "  --time-limit  seconds per run; a planner that reaches it reports status timeout\n"
          "  --paths     JSON of every run's certified path (waypoints); --path-dir: one OMPL matrix\n"

@@ -213,9 +213,11 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         if (options.simplify && record.result.solved()) {
           const auto t1 = Clock::now();
           if (options.simplify_svm) {
-            auto smoothed = planners::smoothPathBySvm(record.result.path, world.checker, world.certifier, world.space,
-                                                      planners::SvppOptions::fromParameters(scenario.paramsFor("svpp")));
-            if (!smoothed.smoothed) log << "  " << runs.planner << " seed " << seed << ": path kept (" << smoothed.why << ")\n";
+            const auto svpp = planners::SvppOptions::fromParameters(scenario.paramsFor("svpp"));
+            auto smoothed = planners::smoothPathBySvm(record.result.path, world.checker, world.certifier,
+                                                      world.space, svpp);
+            if (!smoothed.smoothed)
+              log << "  " << runs.planner << " seed " << seed << ": path kept (" << smoothed.why << ")\n";
             record.result.path = std::move(smoothed.path);
           } else {
             cspace::Rng rng(seed ^ 0x5157A9E1ULL);
@@ -243,7 +245,8 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
   out << "\n" << scenario.name << " (dof " << scenario.robot->dof() << "), " << options.runs << " runs"
       << (scenario.queries.size() > 1 ? " x " + std::to_string(scenario.queries.size()) + " queries" : "")
       << ", seeds " << options.seed << ".." << options.seed + options.runs - 1 << ", " << options.threads
-      << " thread(s)" << (options.simplify ? options.simplify_svm ? ", paths SVM-smoothed" : ", paths simplified" : "") << "\n";
+      << " thread(s)" << (!options.simplify ? "" : options.simplify_svm ? ", paths SVM-smoothed" : ", paths simplified")
+      << "\n";
   out << "mean ± std over all runs (path length and clearance over solved runs); solved = certified "
          "collision-free; CD = collision checks, LP = local planner calls, DQ = distance queries "
          "(certification)\n";
@@ -275,7 +278,7 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
     << ", \"dof\": " << scenario.robot->dof() << ", \"runs\": " << options.runs
     << ", \"queries\": " << scenario.queries.size() << ", \"seed\": " << options.seed
     << ", \"threads\": " << options.threads << ", \"simplified\": " << (options.simplify ? "true" : "false")
-      << ", \"simplifier\": \"" << (!options.simplify ? "none" : options.simplify_svm ? "svpp" : "shortcut") << "\""
+    << ", \"simplifier\": \"" << (!options.simplify ? "none" : options.simplify_svm ? "svpp" : "shortcut") << "\""
     << ",\n  \"results\": [\n";
   for (size_t p = 0; p < results.size(); ++p) {
     const auto& runs = results[p];

@@ -20,7 +20,8 @@
 namespace svmp::experiments {
 
 // False (nothing written) when the trace holds no pattern.
-bool writeSvppSvg(const std::string& file, const std::string& title, const planners::SvppTrace& trace,
-                  const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
+bool writeSvppSvg(const std::string& file, const std::string& title,
+                  const planners::SvppTrace& trace, const Eigen::VectorXd& lower,
+                  const Eigen::VectorXd& upper);
 
 }  // namespace svmp::experiments

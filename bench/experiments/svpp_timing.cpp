@@ -45,8 +45,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
-    else if (arg == "--trials") list_trials = true;
+    if (arg == "--runs" && i + 1 < argc)
+      runs = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--trials")
+      list_trials = true;
     else if (arg == "--set" && i + 1 < argc) {
       const std::string kv = argv[++i];
       const size_t eq = kv.find('=');
@@ -55,15 +57,18 @@ int main(int argc, char** argv) {
         return 2;
       }
       overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
-    } else files.push_back(arg);
+    } else
+      files.push_back(arg);
   }
   if (files.empty()) {
     std::cerr << "usage: svpp-timing [--runs N] [--trials] [--set KEY=VALUE ...] FILE.yaml ...\n";
     return 2;
   }
   MeanStd all_svm, found_svm, found_path, total, patterns;
-  std::cout << "| problem | merged obstacles | samples | patterns | solved | SVM per pattern (ms) | SVM, path found (ms) "
-               "| path generation, path found (ms) | total (ms) |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  std::cout << "| problem | merged obstacles | samples | patterns | solved | SVM per pattern (ms) "
+               "| SVM, path found (ms) "
+               "| path generation, path found (ms) | total (ms) |\n| --- | --- | --- | --- | --- | "
+               "--- | --- | --- | --- |\n";
   try {
     for (const std::string& file : files) {
       const cspace::Scenario s = cspace::loadScenario(file);
@@ -73,7 +78,8 @@ int main(int argc, char** argv) {
       const cspace::CertifiedMotionValidator certifier(checker, space, s.resolution);
       const planners::PlanningContext context{space, checker, validator, 1, &certifier};
       cspace::ParameterSet params = s.paramsFor("svpp");
-      for (const auto& [key, value] : overrides) params.set(key, value, "flag --set " + key + "=" + value);
+      for (const auto& [key, value] : overrides)
+        params.set(key, value, "flag --set " + key + "=" + value);
       const planners::SvppOptions options = planners::SvppOptions::fromParameters(params);
       params.requireAllUsed();
       planners::SvppPlanner planner(context, options);
@@ -90,10 +96,11 @@ int main(int argc, char** argv) {
         patterns.add(static_cast<double>(trials.size()));
         for (const auto& t : trials) {
           if (list_trials)
-            std::cerr << s.name << " seed " << 1 + r << ": " << planners::followStatusName(t.follow.status) << ", "
-                      << t.follow.path.size() << " points, length " << t.follow.length << (t.valid ? ", valid" : "")
-                      << ", SVM " << t.svm_ms << " ms (" << t.model.numSupportVectors() << " SVs), path " << t.path_ms
-                      << " ms\n";
+            std::cerr << s.name << " seed " << 1 + r << ": "
+                      << planners::followStatusName(t.follow.status) << ", " << t.follow.path.size()
+                      << " points, length " << t.follow.length << (t.valid ? ", valid" : "")
+                      << ", SVM " << t.svm_ms << " ms (" << t.model.numSupportVectors()
+                      << " SVs), path " << t.path_ms << " ms\n";
           p_all.add(t.svm_ms), all_svm.add(t.svm_ms);
           samples = t.samples.size();
           if (!t.follow.reached()) continue;
@@ -101,15 +108,16 @@ int main(int argc, char** argv) {
           p_found_path.add(t.path_ms), found_path.add(t.path_ms);
         }
       }
-      std::cout << "| " << s.name << " | " << planner.obstacles().size() << " | " << samples << " | "
-                << static_cast<double>(tried) / runs << " | " << solved << "/" << runs << " | " << p_all.text() << " | "
-                << p_found_svm.text() << " | " << p_found_path.text() << " | " << p_total.text() << " |\n";
+      std::cout << "| " << s.name << " | " << planner.obstacles().size() << " | " << samples
+                << " | " << static_cast<double>(tried) / runs << " | " << solved << "/" << runs
+                << " | " << p_all.text() << " | " << p_found_svm.text() << " | "
+                << p_found_path.text() << " | " << p_total.text() << " |\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "svpp-timing: " << e.what() << "\n";
     return 2;
   }
-  std::cout << "| **all** | | | " << patterns.text() << " | | " << all_svm.text() << " | " << found_svm.text() << " | "
-            << found_path.text() << " | " << total.text() << " |\n";
+  std::cout << "| **all** | | | " << patterns.text() << " | | " << all_svm.text() << " | "
+            << found_svm.text() << " | " << found_path.text() << " | " << total.text() << " |\n";
   return 0;
 }

@@ -44,7 +44,8 @@ bool denselyFree(const test::World& w, const std::vector<Eigen::VectorXd>& path)
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const int n = std::max(1, static_cast<int>(std::ceil((path[i + 1] - path[i]).norm() / step)));
     for (int k = 0; k <= n; ++k)
-      if (!w.checker.isValid(path[i] + (static_cast<double>(k) / n) * (path[i + 1] - path[i]))) return false;
+      if (!w.checker.isValid(path[i] + (static_cast<double>(k) / n) * (path[i + 1] - path[i])))
+        return false;
   }
   return true;
 }
@@ -52,7 +53,8 @@ bool denselyFree(const test::World& w, const std::vector<Eigen::VectorXd>& path)
 double largestTurn(const std::vector<Eigen::VectorXd>& path) {
   double turn = 0;
   for (size_t i = 1; i + 1 < path.size(); ++i) {
-    const Eigen::VectorXd a = (path[i] - path[i - 1]).normalized(), b = (path[i + 1] - path[i]).normalized();
+    const Eigen::VectorXd a = (path[i] - path[i - 1]).normalized(),
+                          b = (path[i + 1] - path[i]).normalized();
     turn = std::max(turn, std::acos(std::clamp(a.dot(b), -1.0, 1.0)));
   }
   return turn;
@@ -73,7 +75,8 @@ TEST(SvppTest, SeparatingLineOfSymmetricObstaclesPassesMidway) {
   EXPECT_NEAR(chosen.model.decision(midway.data()), 0, 0.05);
   EXPECT_LT(chosen.model.decision(up.data()), 0);
   EXPECT_GT(chosen.model.decision(down.data()), 0);
-  // The path crosses x = 1 midway between the obstacles (gap 1.2 .. 0.8) and stays in the gap there.
+  // The path crosses x = 1 midway between the obstacles (gap 1.2 .. 0.8) and stays in the gap
+  // there.
   for (size_t i = 0; i + 1 < r.path.size(); ++i)
     if ((r.path[i].x() - 1) * (r.path[i + 1].x() - 1) <= 0) {
       EXPECT_NEAR(r.path[i].y(), 1, 0.02);
@@ -98,8 +101,8 @@ TEST(SvppTest, OverlappingObstaclesMergeAndDropInnerSamples) {
   ASSERT_EQ(merged.size(), 2u);
   EXPECT_EQ(merged[0].ids, (std::vector<int>{1, 2}));
   EXPECT_EQ(merged[1].ids, (std::vector<int>{3, 4}));
-  // 8 samples per square (vertices, edge midpoints); 1's vertex (0.1, 0.1) and right midpoint (0.1, 0)
-  // lie inside 2, 2's vertex (0, -0.05) and left midpoint (0, 0.05) inside 1.
+  // 8 samples per square (vertices, edge midpoints); 1's vertex (0.1, 0.1) and right midpoint (0.1,
+  // 0) lie inside 2, 2's vertex (0, -0.05) and left midpoint (0, 0.05) inside 1.
   EXPECT_EQ(merged[0].samples.cols(), 12);
   for (Eigen::Index i = 0; i < merged[0].samples.cols(); ++i)
     EXPECT_GT((merged[0].samples.col(i) - Eigen::Vector2d(0.1, 0.1)).norm(), 1e-9);
@@ -107,22 +110,27 @@ TEST(SvppTest, OverlappingObstaclesMergeAndDropInnerSamples) {
   EXPECT_EQ(merged[1].samples.cols(), 13);
   EXPECT_NEAR(merged[1].centroid.x(), 1.1, 1e-12);
   // 3-D: rotated cubes by the separating axis test.
-  const Eigen::Matrix3d rotated = Eigen::AngleAxisd(std::numbers::pi / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d rotated =
+      Eigen::AngleAxisd(std::numbers::pi / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const ConvexPart a = boxPart(Eigen::Vector3d::Zero(), I, Eigen::Vector3d::Constant(0.2));
-  EXPECT_TRUE(partsOverlap(a, boxPart(Eigen::Vector3d(0.23, 0, 0), rotated, Eigen::Vector3d::Constant(0.2))));
-  EXPECT_FALSE(partsOverlap(a, boxPart(Eigen::Vector3d(0.25, 0, 0), rotated, Eigen::Vector3d::Constant(0.2))));
-  EXPECT_FALSE(partsOverlap(a, boxPart(Eigen::Vector3d(0.15, 0.15, 0.15), I, Eigen::Vector3d::Constant(0.09))));
-  EXPECT_EQ(mergeObstacles({a, boxPart(Eigen::Vector3d(0.2, 0, 0), I, Eigen::Vector3d::Constant(0.2), 2)})
-                .front()
-                .samples.cols(),
-            26 * 2 - 9);  // the shared face's 4 vertices, 4 edge midpoints and centre counted once
+  EXPECT_TRUE(partsOverlap(
+      a, boxPart(Eigen::Vector3d(0.23, 0, 0), rotated, Eigen::Vector3d::Constant(0.2))));
+  EXPECT_FALSE(partsOverlap(
+      a, boxPart(Eigen::Vector3d(0.25, 0, 0), rotated, Eigen::Vector3d::Constant(0.2))));
+  EXPECT_FALSE(partsOverlap(
+      a, boxPart(Eigen::Vector3d(0.15, 0.15, 0.15), I, Eigen::Vector3d::Constant(0.09))));
+  EXPECT_EQ(
+      mergeObstacles({a, boxPart(Eigen::Vector3d(0.2, 0, 0), I, Eigen::Vector3d::Constant(0.2), 2)})
+          .front()
+          .samples.cols(),
+      26 * 2 - 9);  // the shared face's 4 vertices, 4 edge midpoints and centre counted once
 }
 
 TEST(SvppTest, NominalPlaneNormalIsThePrincipalDirectionAcrossTheLine) {
   // Vertices spread mostly along (1, 0, 1): its component along the line (x) must not count, so the
   // normal is z, not (1, 0, 1) / sqrt 2.
   Eigen::MatrixXd vertices(3, 6);
-  vertices << -2, -1, 0, 1, 2, 3,  //
+  vertices << -2, -1, 0, 1, 2, 3,        //
       0.1, -0.1, -0.1, -0.1, -0.1, 0.1,  // uncorrelated with z
       -2, -1, 0, 1, 2, 3;
   const NominalFrame f = nominalPlane(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), vertices);
@@ -142,11 +150,13 @@ TEST(SvppTest, NominalPlaneNormalIsThePrincipalDirectionAcrossTheLine) {
 TEST(SvppTest, GuidesShiftWhereAnObstacleOfTheOtherClassReachesAcross) {
   const NominalFrame f = nominalLine(Eigen::Vector2d(0, 0), Eigen::Vector2d(2, 0));  // right = -y
   Eigen::Matrix2Xd v(2, 4);
-  v << 0.9, 1.1, 1.1, 0.9, -0.3, -0.3, 0.1, 0.1;  // centroid right of the line, reaches 0.1 to the left
+  v << 0.9, 1.1, 1.1, 0.9, -0.3, -0.3, 0.1,
+      0.1;  // centroid right of the line, reaches 0.1 to the left
   std::vector<SvppObstacle> obstacles = mergeObstacles({polygonPart(v, 1)});
   TrainingSet set;
   SampleLayout layout;
-  addGuideSamples(f, obstacles, Pattern{0}, layout, Eigen::Vector2d(0, -1), Eigen::Vector2d(2, 1), set);
+  addGuideSamples(f, obstacles, Pattern{0}, layout, Eigen::Vector2d(0, -1), Eigen::Vector2d(2, 1),
+                  set);
   // Flipped to negative (left): positive guides beside it move to d_g + 0.3 right of the line.
   bool shifted = false;
   for (int i = 0; i < set.size(); ++i) {
@@ -239,11 +249,13 @@ TEST(SvppTest, SmoothingFollowsTheSeparatingLineOfAGivenPath) {
   const CertifiedWorld w(kSymmetric);
   // A certified zig-zag through the gap between the two obstacles, with a turn of 88 deg.
   const std::vector<Eigen::VectorXd> zigzag = {Eigen::Vector2d(0.2, 1), Eigen::Vector2d(0.4, 1.15),
-                                               Eigen::Vector2d(0.6, 0.9), Eigen::Vector2d(1.5, 1.05),
-                                               Eigen::Vector2d(1.8, 1)};
+                                               Eigen::Vector2d(0.6, 0.9),
+                                               Eigen::Vector2d(1.5, 1.05), Eigen::Vector2d(1.8, 1)};
   ASSERT_GT(largestTurn(zigzag), 1.5);
-  for (size_t i = 0; i + 1 < zigzag.size(); ++i) ASSERT_TRUE(w.certifier->isValid(zigzag[i], zigzag[i + 1]));
-  const SvmSmoothing s = smoothPathBySvm(zigzag, w.world->checker, *w.certifier, w.world->space, SvppOptions{});
+  for (size_t i = 0; i + 1 < zigzag.size(); ++i)
+    ASSERT_TRUE(w.certifier->isValid(zigzag[i], zigzag[i + 1]));
+  const SvmSmoothing s =
+      smoothPathBySvm(zigzag, w.world->checker, *w.certifier, w.world->space, SvppOptions{});
   ASSERT_TRUE(s.smoothed) << s.why;
   EXPECT_EQ(s.path.front(), zigzag.front());
   EXPECT_EQ(s.path.back(), zigzag.back());
@@ -256,10 +268,12 @@ TEST(SvppTest, SmoothingFollowsTheSeparatingLineOfAGivenPath) {
     }
   // Another robot: the path is kept and the reason given.
   const auto arm = test::makeWorld(
-      "robot: {type: planar_arm, lengths: [1, 1], widths: 0.05}\nstart: [0, 0]\ngoal: [1, 1]\nresolution: 0.01\n");
+      "robot: {type: planar_arm, lengths: [1, 1], widths: 0.05}\nstart: [0, 0]\ngoal: [1, "
+      "1]\nresolution: 0.01\n");
   const cspace::CertifiedMotionValidator arm_certifier(arm->checker, arm->space, 0.01);
   const std::vector<Eigen::VectorXd> arm_path = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)};
-  const SvmSmoothing kept = smoothPathBySvm(arm_path, arm->checker, arm_certifier, arm->space, SvppOptions{});
+  const SvmSmoothing kept =
+      smoothPathBySvm(arm_path, arm->checker, arm_certifier, arm->space, SvppOptions{});
   EXPECT_FALSE(kept.smoothed);
   EXPECT_EQ(kept.path, arm_path);
 }
