@@ -202,6 +202,18 @@ std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts) {
   return merged;
 }
 
+Eigen::MatrixXd allVertices(const std::vector<SvppObstacle>& obstacles, int dim) {
+  Eigen::Index n = 0;
+  for (const SvppObstacle& o : obstacles) n += o.vertices.cols();
+  Eigen::MatrixXd vertices(dim, n);
+  n = 0;
+  for (const SvppObstacle& o : obstacles) {
+    vertices.middleCols(n, o.vertices.cols()) = o.vertices;
+    n += o.vertices.cols();
+  }
+  return vertices;
+}
+
 std::vector<ConvexPart> obstacleParts(const cspace::Environment& environment, int dim,
                                       double inflate) {
   if (dim != 2 && dim != 3)

@@ -53,6 +53,9 @@ struct SvppObstacle {
   Eigen::MatrixXd vertices;  // dim x (all vertices of all parts)
 };
 
+// Every vertex of every obstacle, one per column (`dim` rows when there is none).
+Eigen::MatrixXd allVertices(const std::vector<SvppObstacle>& obstacles, int dim);
+
 // Merges overlapping parts (union-find over partsOverlap) and makes each group's samples. Groups
 // are ordered by their smallest environment id.
 std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts);

@@ -166,14 +166,9 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     return;
   }
   const int dim = context_.space.dim();
-  Eigen::MatrixXd vertices(dim, 0);
-  for (const SvppObstacle& o : obstacles_) {
-    vertices.conservativeResize(dim, vertices.cols() + o.vertices.cols());
-    vertices.rightCols(o.vertices.cols()) = o.vertices;
-  }
   trace_.obstacles = obstacles_;
   trace_.frame = dim == 2 ? nominalLine(query.start, query.goal)
-                          : nominalPlane(query.start, query.goal, vertices);
+                          : nominalPlane(query.start, query.goal, allVertices(obstacles_, dim));
 
   // Patterns: the initial one, then a random walk flipping one obstacle at a time, new patterns
   // only.

@@ -93,14 +93,9 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
   // perpendicular.
   Eigen::VectorXd plane_normal;
   if (dim == 3) {
-    Eigen::MatrixXd vertices(3, 0);
-    for (const SvppObstacle& o : obstacles) {
-      vertices.conservativeResize(3, vertices.cols() + o.vertices.cols());
-      vertices.rightCols(o.vertices.cols()) = o.vertices;
-    }
     plane_normal =
         nominalPlane(start, (goal - start).norm() > 1e-12 ? goal : start + path.direction(0),
-                     vertices)
+                     allVertices(obstacles, 3))
             .normal;
   }
   const auto sideNormal = [&](int i) -> Eigen::VectorXd {

@@ -50,6 +50,11 @@ bool denselyFree(const test::World& w, const std::vector<Eigen::VectorXd>& path)
   return true;
 }
 
+std::string scenarioText(const std::string& file) {
+  std::ifstream in(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + file);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 double largestTurn(const std::vector<Eigen::VectorXd>& path) {
   double turn = 0;
   for (size_t i = 1; i + 1 < path.size(); ++i) {
@@ -179,9 +184,7 @@ TEST(SvppTest, GuidesShiftWhereAnObstacleOfTheOtherClassReachesAcross) {
 TEST(SvppTest, EveryReturnedPathIsCertifiedAndDenselyFree) {
   int solved = 0;
   for (const char* file : {"svpp_2d_01.yaml", "svpp_2d_07.yaml", "svpp_3d10_01.yaml"}) {
-    std::ifstream in(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + file);
-    const std::string yaml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const CertifiedWorld w(yaml);
+    const CertifiedWorld w(scenarioText(file));
     auto planner = w.planner();
     for (std::uint64_t seed : {1, 2}) {
       SCOPED_TRACE(std::string(file) + " seed " + std::to_string(seed));
@@ -198,9 +201,7 @@ TEST(SvppTest, EveryReturnedPathIsCertifiedAndDenselyFree) {
 }
 
 TEST(SvppTest, SameSeedSamePath) {
-  std::ifstream in(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/svpp_2d_02.yaml");
-  const std::string yaml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const CertifiedWorld w(yaml);
+  const CertifiedWorld w(scenarioText("svpp_2d_02.yaml"));
   auto a = w.planner(), b = w.planner();
   const PlanResult first = a->solve(w.world->query(), 7), again = b->solve(w.world->query(), 7);
   ASSERT_TRUE(first.solved()) << first.message;
