@@ -48,6 +48,7 @@ class LocalPlanner final : public Planner {
  public:
   LocalPlanner(const PlanningContext& context, LocalPlannerOptions options);
   std::string name() const override { return "local"; }
+  bool repairable() const override { return false; }
   void clear() override;
   void clearQuery() override;  // the samples, labels and model belong to one query
   PlannerView view() const override { return {&labelled_, risk(), nullptr}; }

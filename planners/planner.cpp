@@ -67,7 +67,7 @@ bool checkEndpoints(const PlanningContext& context, const cspace::Query& query, 
 void Planner::certify(PlanResult& result, std::uint64_t seed, const Termination& stop) const {
   if (!context_.certifier || !result.solved() || result.certified) return;
   const auto t0 = Clock::now();
-  if (context_.repairer) {
+  if (context_.repairer && repairable()) {
     RepairStats stats;
     std::string why;
     result.certified = context_.repairer->verifyAndRepair(result.path, name(), seed, stop, stats, why);

@@ -28,6 +28,7 @@ namespace svmp::planners {
 class PathRepairer;
 class RiskFunction;
 class Roadmap;
+struct SvppTrace;
 
 struct PlanningContext {
   const cspace::ConfigurationSpace& space;
@@ -49,6 +50,7 @@ struct PlannerView {
   const planners::ObstacleSamples* samples = nullptr;  // labelled samples (obstacle ids, or 1/2 for classes)
   const RiskFunction* risk = nullptr;                // decision functions F_k
   const Roadmap* roadmap = nullptr;
+  const SvppTrace* svpp = nullptr;                   // SVPP's patterns tried (planners/svpp_planner.hpp)
 };
 
 class Planner {
@@ -83,9 +85,13 @@ class Planner {
   // Called after clear() by subclasses.
   void forgetBuild() { built_ = false; }
   // With a certifier: proves each segment of a solved, not yet certified result; the first that fails
-  // turns the result into kFailed (message names it, path cleared). With a repairer: verify and repair
-  // instead, failing only when a stretch cannot be repaired.
+  // turns the result into kFailed (message names it, path cleared). With a repairer, for a planner
+  // whose paths may be repaired: verify and repair instead, failing only when a stretch cannot be
+  // repaired.
   void certify(PlanResult& result, std::uint64_t seed, const Termination& stop) const;
+  // False for planners whose path is the method's own answer (the thesis' local planner, SVPP's
+  // separating surface): a stretch replanned by another planner would no longer be theirs.
+  virtual bool repairable() const { return true; }
 
   PlanningContext context_;
 

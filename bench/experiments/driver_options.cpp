@@ -30,14 +30,16 @@ double parseDouble(const std::string& flag, const std::string& value, double min
 
 const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
-         "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify]\n"
+         "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify [svpp]]\n"
          "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--checker NAME] [--check]\n"
-         "  --planners  comma-separated: svmp, prm, local, ompl-prm, ompl-lazyprm, ompl-rrtconnect\n"
+         "  --planners  comma-separated: svmp, prm, local, svpp, ompl-prm, ompl-lazyprm, ompl-rrtconnect,\n"
+         "              ompl-rrt, ompl-sbl, ompl-rrtstar, ompl-fmt, ompl-informedrrtstar\n"
          "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
          "  --time-limit  seconds per run; a planner that reaches it reports status timeout\n"
          "  --paths     JSON of every run's certified path (waypoints); --path-dir: one OMPL matrix\n"
          "              text file per solved run (one configuration a line)\n"
-         "  --simplify  shortcut and reduce every solved path, each new segment certified\n"
+         "  --simplify  shortcut and reduce every solved path, each new segment certified; --simplify svpp:\n"
+         "              follow an SVM separating the obstacles by the side of the path instead (point robots)\n"
          "  --checker   fcl (default), fastron-fk or fastron-rbf: plan on a learned proxy checker; every\n"
          "              path is verified on FCL and its invalid stretches replanned (verify and repair)\n"
          "  --check     print the scenario's summary, validate planners and --set, verify the witness\n";
@@ -71,7 +73,11 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     else if (flag == "--svg") o.svg_dir = value();
     else if (flag == "--paths") o.paths_json = value();
     else if (flag == "--path-dir") o.paths_dir = value();
-    else if (flag == "--simplify") o.simplify = true;
+    else if (flag == "--simplify") {
+      o.simplify = true;
+      if (i + 1 < argc && (std::string(argv[i + 1]) == "svpp" || std::string(argv[i + 1]) == "shortcut"))
+        o.simplify_svm = std::string(argv[++i]) == "svpp";
+    }
     else if (flag == "--set") {
       const std::string kv = value();
       const size_t eq = kv.find('='), dot = kv.find('.');

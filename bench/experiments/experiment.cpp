@@ -12,12 +12,14 @@
 #include "bench/experiments/atomic_file.hpp"
 #include "bench/experiments/output_text.hpp"
 #include "bench/experiments/svg_writer.hpp"
+#include "bench/experiments/svpp_svg.hpp"
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
 #include "cspace/fastron_checker.hpp"
 #include "cspace/motion_validator.hpp"
 #include "planners/path_simplifier.hpp"
 #include "planners/planner_registry.hpp"
+#include "planners/svpp_smoothing.hpp"
 #include "planners/verify_repair.hpp"
 
 namespace svmp::experiments {
@@ -152,6 +154,9 @@ void writePictures(const std::string& dir, const cspace::Scenario& scenario, con
   const std::string base = dir + "/" + safeFileName(scenario.name + "_" + planner.name());
   if (writeConfigurationSpaceSvg(base + "_cspace.svg", content)) log << "  wrote " << base << "_cspace.svg\n";
   if (writeWorkspaceSvg(base + "_workspace.svg", content)) log << "  wrote " << base << "_workspace.svg\n";
+  if (view.svpp && writeSvppSvg(base + "_svpp.svg", content.title, *view.svpp, scenario.robot->lowerLimits(),
+                                scenario.robot->upperLimits()))
+    log << "  wrote " << base << "_svpp.svg\n";
 }
 
 }  // namespace
@@ -209,9 +214,17 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         record.raw_length = planners::pathLength(record.result.path, world.space);
         if (options.simplify && record.result.solved()) {
           const auto t1 = Clock::now();
-          cspace::Rng rng(seed ^ 0x5157A9E1ULL);
-          auto simplified = planners::simplifyPath(record.result.path, world.certifier, world.space, rng);
-          record.result.path = std::move(simplified.path);
+          if (options.simplify_svm) {
+            const auto svpp = planners::SvppOptions::fromParameters(scenario.paramsFor("svpp"));
+            auto smoothed = planners::smoothPathBySvm(record.result.path, world.checker, world.certifier,
+                                                      world.space, svpp);
+            if (!smoothed.smoothed)
+              log << "  " << runs.planner << " seed " << seed << ": path kept (" << smoothed.why << ")\n";
+            record.result.path = std::move(smoothed.path);
+          } else {
+            cspace::Rng rng(seed ^ 0x5157A9E1ULL);
+            record.result.path = planners::simplifyPath(record.result.path, world.certifier, world.space, rng).path;
+          }
           record.simplify_ms = planners::msSince(t1);
         }
         measurePath(scenario, world.space, world.measuring, record);
@@ -234,7 +247,8 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
   out << "\n" << scenario.name << " (dof " << scenario.robot->dof() << "), " << options.runs << " runs"
       << (scenario.queries.size() > 1 ? " x " + std::to_string(scenario.queries.size()) + " queries" : "")
       << ", seeds " << options.seed << ".." << options.seed + options.runs - 1 << ", " << options.threads
-      << " thread(s)" << (options.simplify ? ", paths simplified" : "") << "\n";
+      << " thread(s)" << (!options.simplify ? "" : options.simplify_svm ? ", paths SVM-smoothed" : ", paths simplified")
+      << "\n";
   if (options.checker != "fcl")
     out << "checker " << options.checker << " (learned proxy; every path verified on FCL, failing stretches replanned)\n";
   out << "mean ± std over all runs (path length and clearance over solved runs); solved = certified "
@@ -268,6 +282,7 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
     << ", \"dof\": " << scenario.robot->dof() << ", \"runs\": " << options.runs
     << ", \"queries\": " << scenario.queries.size() << ", \"seed\": " << options.seed
     << ", \"threads\": " << options.threads << ", \"simplified\": " << (options.simplify ? "true" : "false")
+    << ", \"simplifier\": \"" << (!options.simplify ? "none" : options.simplify_svm ? "svpp" : "shortcut") << "\""
     << ",\n  \"results\": [\n";
   for (size_t p = 0; p < results.size(); ++p) {
     const auto& runs = results[p];

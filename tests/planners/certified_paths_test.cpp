@@ -9,6 +9,7 @@
 #include "bench/experiments/experiment.hpp"
 #include "cspace/collision_checker.hpp"
 #include "planners/planner_registry.hpp"
+#include "robots/point_robot.hpp"
 
 namespace svmp::planners {
 namespace {
@@ -35,6 +36,7 @@ TEST(CertifiedPaths, EveryPlannerOnEveryScenarioReturnsOnlyCertifiedPaths) {
     options.scenario = entry.path().string();
     options.planners = {"svmp", "prm"};
     if (scenario.name.rfind("thesis_fig2", 0) == 0) options.planners.push_back("local");
+    if (dynamic_cast<const robots::PointRobot*>(scenario.robot.get())) options.planners.push_back("svpp");
     const auto names = plannerNames();
     if (std::find(names.begin(), names.end(), "ompl-rrtconnect") != names.end())
       options.planners.push_back("ompl-rrtconnect");

@@ -1,0 +1,247 @@
+#include "planners/svpp_planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "planners/planner_registry.hpp"
+#include "robots/point_robot.hpp"
+
+namespace svmp::planners {
+
+SvppOptions SvppOptions::fromParameters(const cspace::ParameterSet& params) {
+  SvppOptions o;
+  o.virtual_samples = static_cast<int>(params.getInt("virtual_samples", o.virtual_samples, 1, 100));
+  o.virtual_distance = params.getDouble("virtual_distance", o.virtual_distance, 1e-9, 1e6);
+  o.guide_distance = params.getDouble("guide_distance", o.guide_distance, 1e-9, 1e6);
+  o.guide_spacing = params.getDouble("guide_spacing", o.guide_spacing, 1e-6, 1e6);
+  o.patterns = static_cast<int>(params.getInt("patterns", o.patterns, 0, 100000));
+  o.max_patterns = static_cast<int>(params.getInt("max_patterns", o.max_patterns, 1, 100000));
+  o.search_angle_deg = params.getDouble("search_angle_deg", o.search_angle_deg, 1, 359);
+  o.step = params.getDouble("step", o.step, 1e-9, 1e6);
+  o.max_steps = static_cast<int>(params.getInt("max_steps", o.max_steps, 0, 10000000));
+  o.gamma = params.getDouble("gamma", o.gamma, 1e-12, 1e12);
+  o.C = params.getDouble("C", o.C, 1e-9, 1e12);
+  o.eps = params.getDouble("eps", o.eps, 1e-15, 1);
+  return o;
+}
+
+std::string SvppOptions::validate() const {
+  std::ostringstream why;
+  if (virtual_samples < 1)
+    why << "virtual_samples must be >= 1, got " << virtual_samples;
+  else if (!(virtual_distance > 0 && guide_distance > 0 && guide_spacing > 0 && step > 0))
+    why << "virtual_distance, guide_distance, guide_spacing and step must be positive";
+  else if (!(guide_distance > virtual_distance))
+    why << "guide_distance (" << guide_distance << ") must exceed virtual_distance ("
+        << virtual_distance << "): the guides wrap the virtual obstacles";
+  else if (patterns < 0 || max_patterns < 1 || max_steps < 0)
+    why << "patterns and max_steps must be >= 0, max_patterns >= 1";
+  else if (patterns > max_patterns)
+    why << "patterns (" << patterns << ") must not exceed max_patterns (" << max_patterns << ")";
+  else if (!(search_angle_deg > 0 && search_angle_deg < 360))
+    why << "search_angle_deg must lie in (0, 360), got " << search_angle_deg;
+  else if (!(gamma > 0 && C > 0 && eps > 0) || !std::isfinite(gamma) || !std::isfinite(C))
+    why << "gamma, C and eps must be positive and finite";
+  return why.str();
+}
+
+SampleLayout SvppOptions::layout() const {
+  return {virtual_samples, virtual_distance, guide_distance, guide_spacing};
+}
+
+SurfaceFollowing SvppOptions::following(const cspace::Query& query, const Eigen::VectorXd& lower,
+                                        const Eigen::VectorXd& upper) const {
+  SurfaceFollowing f;
+  f.step = step;
+  f.search_angle = search_angle_deg * std::numbers::pi / 180;
+  const double automatic = std::ceil(3 * (query.goal - query.start).norm() / step);
+  f.max_steps = max_steps > 0 ? max_steps : static_cast<int>(std::min(automatic, 1e7));
+  f.lower = lower;
+  f.upper = upper;
+  return f;
+}
+
+svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, double eps) {
+  svm::SolverOptions solver;
+  solver.eps = eps;
+  const svm::Kernel kernel = svm::Kernel::rbf(gamma);
+  const svm::SolverResult solution =
+      svm::solveBinary(set.X, set.y, Eigen::VectorXd::Constant(set.size(), C), kernel, solver);
+  return svm::BinaryModel::fromSolution(set.X, set.y, solution, kernel);
+}
+
+SVMP_REGISTER_PLANNER("svpp",
+                      [](const PlanningContext& context, const cspace::ParameterSet& params) {
+                        const SvppOptions o = SvppOptions::fromParameters(params);
+                        if (const std::string why = o.validate(); !why.empty())
+                          throw cspace::ScenarioError("planners.svpp: " + why);
+                        return std::make_unique<SvppPlanner>(context, o);
+                      });
+
+SvppPlanner::SvppPlanner(const PlanningContext& context, SvppOptions options)
+    : Planner(context), options_(options) {
+  if (const std::string why = options_.validate(); !why.empty())
+    throw std::invalid_argument("svpp: " + why);
+}
+
+void SvppPlanner::clear() {
+  forgetBuild();
+  obstacles_.clear();
+  clearQuery();
+}
+
+void SvppPlanner::clearQuery() {
+  trace_ = {};
+  chosen_samples_ = {};
+  chosen_.reset();
+}
+
+PlannerView SvppPlanner::view() const {
+  PlannerView v;
+  if (chosen_) v.samples = &chosen_samples_, v.risk = &*chosen_;
+  v.svpp = &trace_;
+  return v;
+}
+
+void SvppPlanner::buildRoadmap(std::uint64_t, const Termination&, PlanResult& result) {
+  const auto t0 = Clock::now();
+  const auto* point = dynamic_cast<const robots::PointRobot*>(&context_.checker.robot());
+  if (!point) {
+    result.status = PlanStatus::kInvalidInput;
+    result.message = "svpp plans for point robots in 2-D and 3-D only; the robot is '" +
+                     context_.checker.robot().name() + "'";
+    return;
+  }
+  obstacles_ =
+      mergeObstacles(obstacleParts(context_.checker.environment(), point->dof(), point->radius()));
+  result.times.sampling_ms += msSince(t0);
+  result.status = PlanStatus::kSolved;
+}
+
+bool SvppPlanner::validPath(const std::vector<Eigen::VectorXd>& path) const {
+  for (size_t i = 0; i + 1 < path.size(); ++i)
+    if (!context_.validator.isValidIncludingEnd(path[i], path[i + 1])) return false;
+  return true;
+}
+
+SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pattern,
+                                  double best_length, PhaseTimes& times) const {
+  SvppTrial trial;
+  trial.pattern = pattern;
+  auto t0 = Clock::now();
+  const auto& space = context_.space;
+  trial.samples = patternTrainingSet(trace_.frame, obstacles_, pattern, options_.layout(),
+                                     space.lower(), space.upper());
+  times.sampling_ms += msSince(t0);
+  t0 = Clock::now();
+  trial.model = trainSvppModel(trial.samples, options_.gamma, options_.C, options_.eps);
+  trial.svm_ms = msSince(t0);
+  times.training_ms += trial.svm_ms;
+  t0 = Clock::now();
+  SurfaceFollowing following = options_.following(query, space.lower(), space.upper());
+  following.max_length = best_length;
+  if (space.dim() == 2)
+    trial.follow =
+        followSurface2d(trial.model, query.start, query.goal, trace_.frame.along, following);
+  else
+    trial.follow = followSurface3d(
+        trial.model, query.start, query.goal, [&](const Eigen::VectorXd&) { return query.goal; },
+        following);
+  trial.valid = trial.follow.reached() && validPath(trial.follow.path);
+  trial.path_ms = msSince(t0);
+  times.query_ms += trial.path_ms;
+  return trial;
+}
+
+void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+                         PlanResult& result) {
+  if ((query.goal - query.start).norm() < 1e-12) {
+    result.status = PlanStatus::kSolved;
+    result.path = {query.start, query.goal};
+    return;
+  }
+  const int dim = context_.space.dim();
+  trace_.obstacles = obstacles_;
+  trace_.frame = dim == 2 ? nominalLine(query.start, query.goal)
+                          : nominalPlane(query.start, query.goal, allVertices(obstacles_, dim));
+
+  // Patterns: the initial one, then a random walk flipping one obstacle at a time, new patterns
+  // only.
+  const int wanted = options_.patternsFor(dim);
+  const int obstacles = static_cast<int>(obstacles_.size());
+  const double distinct = std::ldexp(1.0, std::min(obstacles, 60));
+  cspace::Rng rng(seed ^ 0x5F9D'3C21'7A11'B00BULL);
+  std::set<Pattern> tried;
+  Pattern pattern = initialPattern(obstacles_, trace_.frame);
+  double best_length = std::numeric_limits<double>::infinity();
+  while (static_cast<int>(tried.size()) < options_.max_patterns &&
+         static_cast<double>(tried.size()) < distinct) {
+    if (stop()) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached after " + std::to_string(tried.size()) + " patterns";
+      break;
+    }
+    tried.insert(pattern);
+    trace_.trials.push_back(tryPattern(query, pattern, best_length, result.times));
+    if (trace_.trials.back().valid)
+      best_length = std::min(best_length, trace_.trials.back().follow.length);
+    if (static_cast<int>(tried.size()) >= wanted && std::isfinite(best_length)) break;
+    if (obstacles == 0) break;
+    std::uniform_int_distribution<int> pick(0, obstacles - 1);
+    for (int attempt = 0; attempt < 100000 && tried.count(pattern); ++attempt) {
+      const int flip = pick(rng);
+      pattern[flip] = !pattern[flip];
+    }
+    if (tried.count(pattern)) break;
+  }
+
+  // The shortest valid path that the certifier proves.
+  std::vector<int> order;
+  for (int i = 0; i < static_cast<int>(trace_.trials.size()); ++i)
+    if (trace_.trials[i].valid) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return trace_.trials[a].follow.length < trace_.trials[b].follow.length;
+  });
+  for (int i : order) {
+    result.status = PlanStatus::kSolved;
+    result.message.clear();
+    result.path = trace_.trials[i].follow.path;
+    certify(result, seed, stop);
+    if (result.solved()) {
+      trace_.chosen = i;
+      break;
+    }
+  }
+  if (trace_.chosen >= 0) {
+    const SvppTrial& chosen = trace_.trials[trace_.chosen];
+    result.support_vectors = chosen.model.numSupportVectors();
+    chosen_samples_.points = chosen.samples.X;
+    for (int i = 0; i < chosen.samples.size(); ++i) {
+      chosen_samples_.labels.push_back(chosen.samples.y[i] > 0 ? 1 : 2);
+      chosen_samples_.boundary.push_back(chosen.samples.kind[i] != SampleKind::kObstacle);
+    }
+    chosen_.emplace(std::vector<svm::BinaryModel>{chosen.model}, std::vector<int>{1},
+                    Eigen::VectorXd::Ones(dim), false);
+    return;
+  }
+  if (result.status == PlanStatus::kTimeout) return;
+  std::map<std::string, int> reasons;
+  for (const SvppTrial& t : trace_.trials)
+    ++reasons[t.follow.reached() ? (t.valid ? "not certified" : "in collision")
+                                 : followStatusName(t.follow.status)];
+  std::ostringstream why;
+  why << "no path in " << trace_.trials.size() << " patterns (";
+  for (auto it = reasons.begin(); it != reasons.end(); ++it)
+    why << (it == reasons.begin() ? "" : ", ") << it->first << ": " << it->second;
+  why << ")";
+  result.status = PlanStatus::kFailed;
+  result.message = why.str();
+  result.path.clear();
+}
+
+}  // namespace svmp::planners
