@@ -26,8 +26,8 @@ FastronCheckerOptions FastronCheckerOptions::defaults(FastronFeatures features) 
     o.model.gamma = 100;
     o.model.beta = 30;
   } else {
-    o.model.gamma = 10;
-    o.model.beta = 100;
+    o.model.gamma = 20;
+    o.model.beta = 30;
   }
   return o;
 }

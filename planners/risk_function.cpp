@@ -11,6 +11,7 @@ namespace {
 
 // Stack storage for per-call scaled coordinates and gradients: no allocation in the hot loop.
 using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 32, 1>;
+using FeatureVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 96, 1>;
 
 }  // namespace
 
@@ -23,28 +24,46 @@ const char* descentStatusName(DescentStatus status) {
   return "?";
 }
 
+namespace {
+
+// The features the models of a risk function take: control-point positions, 3 per point.
+Eigen::MatrixXd controlPointFeatures(const robots::Robot& robot, const Eigen::MatrixXd& configurations) {
+  Eigen::MatrixXd features(3 * robot.numControlPoints(), configurations.cols());
+  Eigen::Matrix3Xd points;
+  for (Eigen::Index i = 0; i < configurations.cols(); ++i) {
+    robot.controlPoints(configurations.col(i), points);
+    features.col(i) = Eigen::Map<const Eigen::VectorXd>(points.data(), points.size());
+  }
+  return features;
+}
+
+}  // namespace
+
 RiskFunction::RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int> classes,
-                           Eigen::VectorXd scale, bool truncated)
-    : models_(std::move(models)), classes_(std::move(classes)), scale_(std::move(scale)) {
+                           Eigen::VectorXd scale, bool truncated, const robots::Robot* fk)
+    : models_(std::move(models)), classes_(std::move(classes)), scale_(std::move(scale)), fk_(fk) {
   if (models_.empty() || models_.size() != classes_.size())
     throw std::invalid_argument("risk function: need one model per class");
   if (scale_.size() > 32) throw std::invalid_argument("risk function: at most 32 dimensions");
+  const long features = fk_ ? 3L * fk_->numControlPoints() : scale_.size();
+  if (features > 96) throw std::invalid_argument("risk function: at most 32 control points");
   for (const auto& m : models_)
-    if (m.dim() != scale_.size())
-      throw std::invalid_argument("risk function: model dimension differs from the space's");
-  const bool rbf = models_.front().kernel().type == svm::KernelType::kRbf;
-  if (truncated && rbf)
+    if (m.dim() != features)
+      throw std::invalid_argument("risk function: model dimension differs from the features'");
+  if (truncated && models_.front().kernel().isPlainRbf())
     for (const auto& m : models_) truncated_.emplace_back(m);
 }
 
 RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations, const std::vector<int>& labels,
                                           double sigma, double C, const std::map<int, double>& class_weight,
                                           const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
-                                          bool truncated, int threads) {
-  const Eigen::MatrixXd scaled = scale.asDiagonal() * configurations;
-  svm::OneVsRestModel ovr = svm::trainOneVsRest(scaled, labels, svm::Kernel::rbfFromSigma(sigma), C, class_weight,
-                                                solver, threads);
-  return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated);
+                                          bool truncated, int threads, const robots::Robot* fk) {
+  const svm::Kernel rbf = svm::Kernel::rbfFromSigma(sigma);
+  const Eigen::MatrixXd features =
+      fk ? controlPointFeatures(*fk, configurations) : Eigen::MatrixXd(scale.asDiagonal() * configurations);
+  svm::OneVsRestModel ovr = svm::trainOneVsRest(features, labels, fk ? svm::Kernel::blockSum(rbf, 3) : rbf, C,
+                                                class_weight, solver, threads);
+  return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated, fk);
 }
 
 RiskFunction RiskFunction::trainBinary(const Eigen::MatrixXd& configurations, const Eigen::VectorXd& y,
@@ -61,10 +80,32 @@ int RiskFunction::classIndex(int label) const {
   return it == classes_.end() ? -1 : static_cast<int>(it - classes_.begin());
 }
 
-double RiskFunction::evaluateScaled(int k, const double* x, double* grad_x) const {
-  if (!truncated_.empty())
-    return grad_x ? truncated_[k].decisionAndGradient(x, grad_x) : truncated_[k].decision(x);
-  return grad_x ? models_[k].decisionAndGradient(x, grad_x) : models_[k].decision(x);
+double RiskFunction::evaluateScaled(int k, const double* x, double* grad_x, bool exact) const {
+  if (!fk_) {
+    if (!truncated_.empty() && !exact)
+      return grad_x ? truncated_[k].decisionAndGradient(x, grad_x) : truncated_[k].decision(x);
+    return grad_x ? models_[k].decisionAndGradient(x, grad_x) : models_[k].decision(x);
+  }
+  const int n = static_cast<int>(scale_.size());
+  const Eigen::Map<const Eigen::VectorXd> xs(x, n);
+  Eigen::VectorXd q = xs.cwiseQuotient(scale_);
+  thread_local Eigen::Matrix3Xd points, moved;
+  fk_->controlPoints(q, points);
+  const Eigen::Map<const Eigen::VectorXd> phi(points.data(), points.size());
+  if (!grad_x) return models_[k].decision(phi.data());
+  FeatureVector g(phi.size());
+  const double f = models_[k].decisionAndGradient(phi.data(), g.data());
+  // dF/dx_j = g . dphi/dq_j / scale_j, dphi/dq_j by a forward difference (FK is smooth).
+  constexpr double h = 1e-6;
+  for (int j = 0; j < n; ++j) {
+    const double qj = q[j];
+    q[j] += h;
+    fk_->controlPoints(q, moved);
+    q[j] = qj;
+    const Eigen::Map<const Eigen::VectorXd> phi_j(moved.data(), moved.size());
+    grad_x[j] = g.dot(phi_j - phi) / h / scale_[j];
+  }
+  return f;
 }
 
 double RiskFunction::decision(int k, const Eigen::Ref<const Eigen::VectorXd>& q) const {
@@ -93,9 +134,7 @@ DescentResult RiskFunction::descend(int k, const Eigen::Ref<const Eigen::VectorX
   // stall the descent just short of F = 0; the exact F, smooth, finishes it in a few Newton steps.
   const bool polish = !truncated_.empty();
   int limit = options.max_iterations;
-  auto evaluate = [&](const double* at, double* grad, bool exact) {
-    return exact ? models_[k].decisionAndGradient(at, grad) : evaluateScaled(k, at, grad);
-  };
+  auto evaluate = [&](const double* at, double* grad, bool exact) { return evaluateScaled(k, at, grad, exact); };
   for (bool exact : {false, true}) {
     // Polish only where the residual is within the truncation error: elsewhere (far from every
     // support vector, F = bias) the exact F is flat too.

@@ -6,6 +6,10 @@
 // The models are trained on scaled coordinates x = sqrt(w) .* q so the RBF kernel measures the weighted
 // joint metric of eq. 4.3; this class takes and returns configurations q. With an RBF kernel F is
 // evaluated through the exp(-5)-truncated sum (ch. 4.3.1); other kernels use the full sum.
+// With a forward-kinematics robot (the FK kernel of Das & Yip 2019, eq. 4, beyond the thesis), the
+// models are trained on the workspace positions of the robot's control points instead, with the RBF
+// summed over control points; dF/dq is the chain rule through the control points' Jacobian (forward
+// differences, one control-point evaluation per joint), and the descent still steps in x.
 // Thread safety: const methods may be called concurrently.
 #include <Eigen/Core>
 #include <map>
@@ -13,6 +17,7 @@
 #include <vector>
 
 #include "cspace/configuration_space.hpp"
+#include "robots/robot.hpp"
 #include "svm/model.hpp"
 #include "svm/smo_solver.hpp"
 #include "svm/truncated_evaluator.hpp"
@@ -45,8 +50,9 @@ struct DescentResult {
 
 class RiskFunction {
  public:
+  // `fk`: null for models on scaled joints; else the robot whose control points the models take.
   RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int> classes, Eigen::VectorXd scale,
-               bool truncated = true);
+               bool truncated = true, const robots::Robot* fk = nullptr);
 
   // Training on configurations (one per column), scaled here by `scale` = sqrt(w) so the RBF of width
   // sigma measures the weighted metric: one-versus-rest over obstacle labels (SVMP, thesis ch. 3.2;
@@ -54,7 +60,7 @@ class RiskFunction {
   static RiskFunction trainOneVsRest(const Eigen::MatrixXd& configurations, const std::vector<int>& labels,
                                      double sigma, double C, const std::map<int, double>& class_weight,
                                      const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
-                                     bool truncated, int threads);
+                                     bool truncated, int threads, const robots::Robot* fk = nullptr);
   static RiskFunction trainBinary(const Eigen::MatrixXd& configurations, const Eigen::VectorXd& y,
                                   const Eigen::VectorXd& C, double sigma, const svm::SolverOptions& solver,
                                   const Eigen::VectorXd& scale, bool truncated);
@@ -80,12 +86,14 @@ class RiskFunction {
                         const cspace::ConfigurationSpace& space, const DescentOptions& options) const;
 
  private:
-  double evaluateScaled(int k, const double* x, double* grad_x) const;
+  // F_k at scaled coordinates x (and dF/dx when grad_x is not null); `exact` skips the truncation.
+  double evaluateScaled(int k, const double* x, double* grad_x, bool exact = false) const;
 
   std::vector<svm::BinaryModel> models_;
   std::vector<svm::TruncatedRbfEvaluator> truncated_;  // empty unless RBF and truncation asked for
   std::vector<int> classes_;
   Eigen::VectorXd scale_;
+  const robots::Robot* fk_ = nullptr;
 };
 
 }  // namespace svmp::planners

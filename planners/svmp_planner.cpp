@@ -29,6 +29,8 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
   o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
   o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
+  o.kernel = params.getString("kernel", o.kernel, {"rbf", "fk"});
+  o.fk_sigma = params.getDouble("fk_sigma", o.fk_sigma, -1, 1e6);
   return o;
 }
 
@@ -39,6 +41,8 @@ std::string SvmpOptions::validate() const {
   if (samples_per_tree < 1 || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0)
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2)";
   if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
+  if (kernel != "rbf" && kernel != "fk") return "kernel must be rbf or fk, got " + kernel;
+  if (!std::isfinite(fk_sigma)) return "fk_sigma must be finite";
   return "";
 }
 
@@ -117,9 +121,14 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   svm::SolverOptions solver;
   solver.eps = options_.eps;
   solver.cache_mb = options_.cache_mb;
-  risk_.emplace(RiskFunction::trainOneVsRest(samples_.points, samples_.labels, options_.sigma, options_.C, weights,
-                                             solver, context_.space.metricScale(), options_.truncated,
-                                             context_.threads));
+  const bool fk = options_.kernel == "fk";
+  const robots::Robot& robot = context_.checker.robot();
+  const double reach = robot.jointReach().size() > 0 ? robot.jointReach()[0] : 0.0;
+  const double fk_sigma = options_.fk_sigma > 0 ? options_.fk_sigma : reach > 0 ? 0.05 * reach : 0.1;
+  risk_.emplace(RiskFunction::trainOneVsRest(samples_.points, samples_.labels, fk ? fk_sigma : options_.sigma,
+                                             options_.C, weights, solver, context_.space.metricScale(),
+                                             options_.truncated, context_.threads,
+                                             fk ? &robot : nullptr));
   times.training_ms += msSince(t0);
   return "";
 }

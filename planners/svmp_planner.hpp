@@ -37,6 +37,11 @@ struct SvmpOptions {
   int repair_samples = 100;       // random configurations per repair round
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
   bool sample_self_collision = true;  // the self-collision region is one more class
+  // "rbf": the thesis' RBF on the weighted joints; "fk": the FK kernel of Das & Yip 2019 (eq. 4), the
+  // RBF of width fk_sigma (m) on each control point's workspace position, summed over control points;
+  // fk_sigma <= 0: 5% of the robot's reach (the reach of its first joint).
+  std::string kernel = "rbf";
+  double fk_sigma = -1;
 
   // Reads every field from `params` under its own name, with its bounds; absent keys keep the
   // defaults above (the one place they are written). Throws cspace::ScenarioError.

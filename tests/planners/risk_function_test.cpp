@@ -5,6 +5,7 @@
 #include <random>
 
 #include "planners/risk_function.hpp"
+#include "robots/planar_arm.hpp"
 #include "planners/svmp_planner.hpp"
 #include "test_world.hpp"
 
@@ -145,6 +146,53 @@ TEST(RiskFunction, DescentStaysInsideTheBounds) {
   const DescentResult r = risk.descend(0, Eigen::Vector2d(0.2, 0.3), space, options);
   EXPECT_TRUE(space.contains(r.q)) << r.q.transpose();
   EXPECT_NE(r.status, DescentStatus::kOnBoundary);
+}
+
+// The FK kernel (Das & Yip 2019, eq. 4) as SVMP's: models on a planar arm's control points, F equal to
+// the block-sum RBF on the control points it was trained with, dF/dq by the chain rule through the
+// control points against central differences, and a descent that ends on F = 0.
+TEST(RiskFunction, ForwardKinematicsKernelOnControlPoints) {
+  const robots::PlanarArm arm({1.0, 0.8, 0.5}, {0.1, 0.1, 0.1}, Eigen::Vector3d::Constant(-3.1),
+                              Eigen::Vector3d::Constant(3.1));
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-3, 3);
+  Eigen::MatrixXd q(3, 300);
+  std::vector<int> labels(300);
+  Eigen::Matrix3Xd points;
+  for (int i = 0; i < 300; ++i) {
+    q.col(i) = Eigen::Vector3d(u(rng), u(rng), u(rng));
+    arm.controlPoints(q.col(i), points);
+    labels[i] = points(0, 2) > 0.5 ? 1 : 2;  // tip right or left of x = 0.5
+  }
+  const Eigen::Vector3d scale(1, 2, 0.5);
+  const RiskFunction risk = RiskFunction::trainOneVsRest(q, labels, 0.3, 100, {{1, 1.0}, {2, 1.0}}, {}, scale,
+                                                         true, 1, &arm);
+  ASSERT_EQ(risk.model(0).dim(), 3 * arm.numControlPoints());
+  EXPECT_FALSE(risk.model(0).kernel().isPlainRbf());
+  int descended = 0;
+  for (int t = 0; t < 20; ++t) {
+    const Eigen::Vector3d at(u(rng), u(rng), u(rng));
+    arm.controlPoints(at, points);
+    const Eigen::VectorXd phi = Eigen::Map<const Eigen::VectorXd>(points.data(), points.size());
+    EXPECT_NEAR(risk.decision(0, at), risk.model(0).decision(phi.data()), 1e-12);
+    Eigen::VectorXd grad(3);
+    risk.decisionAndGradient(0, at, grad);
+    for (int d = 0; d < 3; ++d) {
+      Eigen::Vector3d plus = at, minus = at;
+      plus[d] += 1e-5;
+      minus[d] -= 1e-5;
+      const double fd = (risk.decision(0, plus) - risk.decision(0, minus)) / 2e-5;
+      EXPECT_NEAR(grad[d], fd, 1e-4 * std::max(1.0, std::abs(fd))) << "dim " << d << " at " << at.transpose();
+    }
+    const cspace::ConfigurationSpace space(arm.lowerLimits(), arm.upperLimits(), scale.cwiseAbs2());
+    const DescentResult r = risk.descend(0, at, space, DescentOptions{});
+    EXPECT_LE(std::abs(risk.decision(0, r.q)), std::abs(risk.decision(0, at)) + 1e-12);
+    if (r.status == DescentStatus::kOnBoundary) {
+      ++descended;
+      EXPECT_LE(std::abs(risk.decision(0, r.q)), 1e-3);
+    }
+  }
+  EXPECT_GE(descended, 10);  // the rest start where F is flat (far from every support vector)
 }
 
 }  // namespace

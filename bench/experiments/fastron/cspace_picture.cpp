@@ -28,11 +28,19 @@ void panel(std::ostringstream& svg, double x0, const std::string& title, const s
   const double cell = kPanel / kGrid;
   svg << "<g transform=\"translate(" << num(x0) << ",40)\"><text x=\"0\" y=\"-8\" font-size=\"14\">" << title << "</text>\n";
   svg << "<rect width=\"" << kPanel << "\" height=\"" << kPanel << "\" fill=\"#ffffff\" stroke=\"#000\"/>\n";
+  // One rectangle per run of colliding cells in a grid column.
   for (int i = 0; i < kGrid; ++i)
-    for (int j = 0; j < kGrid; ++j)
-      if (colliding[i * kGrid + j])
-        svg << "<rect x=\"" << num(i * cell) << "\" y=\"" << num(kPanel - (j + 1) * cell) << "\" width=\"" << num(cell + 0.2)
-            << "\" height=\"" << num(cell + 0.2) << "\" fill=\"#d9534f\"/>\n";
+    for (int j = 0; j < kGrid;) {
+      if (!colliding[i * kGrid + j]) {
+        ++j;
+        continue;
+      }
+      int end = j;
+      while (end < kGrid && colliding[i * kGrid + end]) ++end;
+      svg << "<rect x=\"" << num(i * cell) << "\" y=\"" << num(kPanel - end * cell) << "\" width=\"" << num(cell + 0.2)
+          << "\" height=\"" << num((end - j) * cell + 0.2) << "\" fill=\"#d9534f\"/>\n";
+      j = end;
+    }
   for (const auto& q : support) {
     if (std::abs(q[2]) > 0.3) continue;  // near the slice q3 = 0
     svg << "<circle cx=\"" << num((q[0] + kPi) / (2 * kPi) * kPanel) << "\" cy=\"" << num(kPanel - (q[1] + kPi) / (2 * kPi) * kPanel)

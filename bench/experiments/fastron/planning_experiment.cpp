@@ -1,6 +1,7 @@
 #include "bench/experiments/fastron/planning_experiment.hpp"
 
 #include <iomanip>
+#include <tuple>
 #include <map>
 #include <ostream>
 #include <sstream>
@@ -61,9 +62,11 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
         if (attempt == 100) throw std::runtime_error("no move keeps the query's end points free");
       }
       const std::vector<Eigen::VectorXd> ends = {query.start, query.goal};
-      for (auto [proxy, times] : {std::pair{&fk, &results.fk_update_ms}, std::pair{&rbf, &results.rbf_update_ms}}) {
+      for (auto [proxy, times, sizes] : {std::tuple{&fk, &results.fk_update_ms, &results.fk_support},
+                                         std::tuple{&rbf, &results.rbf_update_ms, &results.rbf_support}}) {
         const auto s = move == 0 ? proxy->train(*exact, rng(), ends) : proxy->update(*exact, rng(), ends);
         times->push_back(s.label_ms + s.learn_ms);
+        sizes->push_back(s.train.support);
       }
       ++results.positions;
       const cspace::DiscreteMotionValidator exact_validator(*exact, space, scenario.resolution);
@@ -109,8 +112,9 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
 void printPlanningTable(const PlanningResults& r, std::ostream& out) {
   out << "\nFig 6: planning with verify and repair, " << r.positions
       << " obstacle positions; time = wall time per query (verify and repair included), mean ± std [median]\n"
-      << "model updates: fastron-fk " << meanStd(statsOf(r.fk_update_ms), 1) << " ms, fastron-rbf "
-      << meanStd(statsOf(r.rbf_update_ms), 1) << " ms\n";
+      << "model updates: fastron-fk " << meanStd(statsOf(r.fk_update_ms), 1) << " ms ("
+      << meanStd(statsOf(r.fk_support), 0) << " support points), fastron-rbf " << meanStd(statsOf(r.rbf_update_ms), 1)
+      << " ms (" << meanStd(statsOf(r.rbf_support), 0) << ")\n";
   out << pad("planner", 22) << pad("checker", 13) << pad("solved", 11) << pad("time ms", 26) << pad("vs fcl", 8)
       << pad("verify+repair ms", 18) << pad("repaired", 10) << pad("exact checks", 16) << "path length\n";
   std::map<std::string, double> fcl_median;
@@ -133,7 +137,8 @@ std::string planningJson(const PlanningResults& r) {
   std::ostringstream o;
   o << std::setprecision(10) << "{\"positions\": " << r.positions << ", \"fastron_fk_update_ms\": "
     << jsonStats(statsOf(r.fk_update_ms)) << ", \"fastron_rbf_update_ms\": " << jsonStats(statsOf(r.rbf_update_ms))
-    << ", \"runs\": [";
+    << ", \"fastron_fk_support\": " << jsonStats(statsOf(r.fk_support))
+    << ", \"fastron_rbf_support\": " << jsonStats(statsOf(r.rbf_support)) << ", \"runs\": [";
   for (size_t i = 0; i < r.rows.size(); ++i) {
     const auto& row = r.rows[i];
     o << (i ? ", " : "") << "{\"planner\": \"" << row.planner << "\", \"checker\": \"" << row.checker

@@ -40,6 +40,7 @@ struct PlannerCheckerRuns {
 struct PlanningResults {
   std::vector<PlannerCheckerRuns> rows;
   std::vector<double> fk_update_ms, rbf_update_ms;
+  std::vector<double> fk_support, rbf_support;  // model sizes after each training or update
   int positions = 0;  // obstacle positions planned on
 };
 

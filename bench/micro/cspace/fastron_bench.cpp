@@ -47,22 +47,23 @@ Fixture& fixture() {
   return f;
 }
 
-// 0: FCL, 1: Fastron FK, 2: Fastron RBF.
-void BM_Query(benchmark::State& state) {
+// which: 0 FCL, 1 Fastron FK, 2 Fastron RBF. Names BM_X/{fcl,fk,rbf}/panda pair for scripts/bench_ratios.
+void BM_Query(benchmark::State& state, int which) {
   const auto& f = fixture();
-  const auto& checker = f.checker(static_cast<int>(state.range(0)));
+  const auto& checker = f.checker(which);
   int i = 0, hits = 0;
   for (auto _ : state) hits += checker.check(f.configurations.col(i++ & 1023)) != cspace::kFree;
   benchmark::DoNotOptimize(hits);
   state.SetItemsProcessed(state.iterations());
-  if (state.range(0) > 0) state.counters["support"] = static_cast<const cspace::FastronChecker&>(checker).model().size();
+  if (which > 0) state.counters["support"] = static_cast<const cspace::FastronChecker&>(checker).model().size();
 }
-BENCHMARK(BM_Query)->Arg(0)->Arg(1)->Arg(2)->ArgName("fcl0_fk1_rbf2");
+BENCHMARK_CAPTURE(BM_Query, fcl/panda, 0);
+BENCHMARK_CAPTURE(BM_Query, fk/panda, 1);
+BENCHMARK_CAPTURE(BM_Query, rbf/panda, 2);
 
 // All 64 configurations of one segment (no early exit, so every checker does the same work).
-void BM_MotionBatch(benchmark::State& state) {
+void BM_MotionBatch(benchmark::State& state, int which) {
   const auto& f = fixture();
-  const int which = static_cast<int>(state.range(0));
   int s = 0, hits = 0;
   std::vector<int> out;
   for (auto _ : state) {
@@ -77,15 +78,15 @@ void BM_MotionBatch(benchmark::State& state) {
   benchmark::DoNotOptimize(hits);
   state.SetItemsProcessed(state.iterations() * 64);
 }
-BENCHMARK(BM_MotionBatch)->Arg(0)->Arg(1)->Arg(2)->ArgName("fcl0_fk1_rbf2");
+BENCHMARK_CAPTURE(BM_MotionBatch, fcl/panda, 0);
+BENCHMARK_CAPTURE(BM_MotionBatch, fk/panda, 1);
+BENCHMARK_CAPTURE(BM_MotionBatch, rbf/panda, 2);
 
 // Active learning and a warm update after the box moved 5 cm (labelling by FCL included); the box
 // moves back and forth so every update has work to do.
-void BM_Update(benchmark::State& state) {
+void BM_Update(benchmark::State& state, cspace::FastronFeatures features) {
   const auto& f = fixture();
-  cspace::FastronChecker model(f.scenario.robot, cspace::FastronCheckerOptions::defaults(
-                                                     state.range(0) == 1 ? cspace::FastronFeatures::kControlPoints
-                                                                         : cspace::FastronFeatures::kJoints));
+  cspace::FastronChecker model(f.scenario.robot, cspace::FastronCheckerOptions::defaults(features));
   model.train(f.exact, 3);
   std::vector<std::unique_ptr<cspace::CollisionChecker>> moved;
   for (double dx : {0.05, 0.0}) {
@@ -101,7 +102,8 @@ void BM_Update(benchmark::State& state) {
     state.counters["support"] = s.train.support;
   }
 }
-BENCHMARK(BM_Update)->Arg(1)->Arg(2)->ArgName("fk1_rbf2")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Update, fk/panda, cspace::FastronFeatures::kControlPoints)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Update, rbf/panda, cspace::FastronFeatures::kJoints)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
