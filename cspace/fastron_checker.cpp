@@ -101,20 +101,17 @@ int FastronChecker::check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
 void FastronChecker::checkBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, std::vector<int>& out) const {
   const int B = static_cast<int>(qs.cols());
   queries_.fetch_add(B, std::memory_order_relaxed);
-  out.assign(B, kFree);
-  thread_local std::vector<float> rows, f;
-  thread_local std::vector<double> values;
-  const long stride = (B + 7) / 8 * 8;
-  rows.assign(static_cast<size_t>(dim_) * stride, 0.f);
+  out.resize(B);
+  thread_local std::vector<float> f;
   f.resize(dim_);
   for (int b = 0; b < B; ++b) {
+    if (!robot_->withinLimits(qs.col(b))) {
+      out[b] = kJointLimitHit;
+      continue;
+    }
     features(qs.col(b), f.data());
-    for (int k = 0; k < dim_; ++k) rows[k * stride + b] = f[k];
+    out[b] = model_.value(f.data()) > 0 ? kPredictedHit : kFree;
   }
-  values.resize(B);
-  model_.valueBatch(rows.data(), stride, B, values.data());
-  for (int b = 0; b < B; ++b)
-    out[b] = !robot_->withinLimits(qs.col(b)) ? kJointLimitHit : values[b] > 0 ? kPredictedHit : kFree;
 }
 
 bool FastronChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const {
@@ -200,50 +197,6 @@ FastronLearnStats FastronChecker::update(const ValidityChecker& exact, std::uint
   for (const auto& q : extra) robot_->checkConfiguration(q, "Fastron training point"), qs.push_back(q);
   alpha.resize(qs.size(), 0.0);
   return learn(exact, std::move(qs), std::move(alpha));
-}
-
-FastronMotionValidator::FastronMotionValidator(const FastronChecker& checker, const ConfigurationSpace& space,
-                                               double resolution)
-    : checker_(checker), space_(space), sampled_(checker, space, resolution) {}
-
-std::int64_t FastronMotionValidator::firstInvalid(const Eigen::Ref<const Eigen::VectorXd>& a,
-                                                  const Eigen::Ref<const Eigen::VectorXd>& b, bool with_end,
-                                                  std::int64_t& segments) const {
-  segments = sampled_.interiorPoints(space_.distance(a, b)) + 1;
-  const std::int64_t last = with_end ? segments : segments - 1;
-  constexpr std::int64_t kBatch = 64;  // configurations per model evaluation
-  thread_local Eigen::MatrixXd qs;
-  thread_local std::vector<int> hit;
-  Eigen::VectorXd q(a.size());
-  for (std::int64_t first = 1; first <= last; first += kBatch) {
-    const std::int64_t count = std::min(kBatch, last - first + 1);
-    qs.resize(a.size(), count);
-    for (std::int64_t i = 0; i < count; ++i) {
-      space_.interpolate(a, b, static_cast<double>(first + i) / segments, q);
-      qs.col(i) = q;
-    }
-    checker_.checkBatch(qs, hit);
-    for (std::int64_t i = 0; i < count; ++i)
-      if (hit[i] != kFree) return first + i;
-  }
-  return segments + 1;
-}
-
-bool FastronMotionValidator::isValid(const Eigen::Ref<const Eigen::VectorXd>& a,
-                                     const Eigen::Ref<const Eigen::VectorXd>& b) const {
-  countCall();
-  std::int64_t segments = 0;
-  return firstInvalid(a, b, false, segments) > segments;
-}
-
-bool FastronMotionValidator::checkMotion(const Eigen::Ref<const Eigen::VectorXd>& a,
-                                         const Eigen::Ref<const Eigen::VectorXd>& b, double& last_valid) const {
-  countCall();
-  std::int64_t segments = 0;
-  const std::int64_t i = firstInvalid(a, b, true, segments);
-  if (i > segments) return true;
-  last_valid = static_cast<double>(i - 1) / segments;
-  return false;
 }
 
 }  // namespace svmp::cspace

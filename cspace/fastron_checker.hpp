@@ -24,7 +24,6 @@
 #include <vector>
 
 #include "cspace/configuration_space.hpp"
-#include "cspace/motion_validator.hpp"
 #include "cspace/scenario/parameters.hpp"
 #include "cspace/validity_checker.hpp"
 #include "svm/fastron.hpp"
@@ -81,8 +80,10 @@ class FastronChecker final : public ValidityChecker {
 
   // The model's value f(q) (> 0: predicted in collision); not counted.
   double value(const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  // Predictions for many configurations (columns of qs) at once: out[i] is kFree, kPredictedHit or
-  // kJointLimitHit. Counts qs.cols() checks.
+  // check() for each column of qs (out[i]: kFree, kPredictedHit or kJointLimitHit), one feature buffer
+  // for all. One query after another: evaluating several at once (configurations across the vector
+  // lanes) measured slower, the support set stays in L1 either way (docs/fastron.md). Counts qs.cols()
+  // checks.
   void checkBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, std::vector<int>& out) const;
 
   const svm::FastronModel& model() const { return model_; }
@@ -107,28 +108,6 @@ class FastronChecker final : public ValidityChecker {
   std::vector<std::int8_t> support_label_;  // +1 in collision
   Eigen::VectorXd centre_, half_range_;  // joint scaling to [-1, 1]
   mutable std::atomic<std::uint64_t> queries_{0};
-};
-
-// Checks segments on a Fastron model as DiscreteMotionValidator does (same configurations at the same
-// resolution), but predicts all configurations of a segment in one batched model evaluation.
-class FastronMotionValidator final : public MotionValidator {
- public:
-  FastronMotionValidator(const FastronChecker& checker, const ConfigurationSpace& space, double resolution);
-  bool isValid(const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b) const override;
-  bool checkMotion(const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
-                   double& last_valid) const override;
-  const ValidityChecker& checker() const override { return checker_; }
-  const ConfigurationSpace& space() const override { return space_; }
-  double resolution() const override { return sampled_.resolution(); }
-
- private:
-  // The first invalid configuration among the segment's i = 1..segments (end included when
-  // with_end), in order from a; segments + 1 when all are valid.
-  std::int64_t firstInvalid(const Eigen::Ref<const Eigen::VectorXd>& a, const Eigen::Ref<const Eigen::VectorXd>& b,
-                            bool with_end, std::int64_t& segments) const;
-  const FastronChecker& checker_;
-  const ConfigurationSpace& space_;
-  DiscreteMotionValidator sampled_;  // for the interior point count and its limits
 };
 
 }  // namespace svmp::cspace

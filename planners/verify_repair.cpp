@@ -17,7 +17,8 @@ bool PathRepairer::verifyAndRepair(std::vector<Eigen::VectorXd>& path, const std
                                    std::string& why) const {
   const std::uint64_t checks0 = exact_.checker.collisionChecks();
   const auto t0 = Clock::now();
-  const bool roadmap = planner == "svmp" || planner == "prm" || planner == "local";
+  // Planners that build a roadmap or a model per call are no repairers of a short stretch.
+  const bool roadmap = planner == "svmp" || planner == "prm" || planner == "local" || planner == "svpp";
   const std::vector<std::string> names = plannerNames();
   const std::string repairer =
       !roadmap && std::find(names.begin(), names.end(), planner) != names.end() ? planner : fallback_;

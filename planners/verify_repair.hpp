@@ -27,8 +27,8 @@ class PathRepairer {
   // `exact` must have a certifier and outlive the repairer; with the certifier as its motion validator
   // too, a repair accepts only segments it proves (a sampled validator may pass a segment that clips a
   // corner, and the repair would fail certification). Repairs use `fallback_planner` when the planner
-  // being repaired is not registered or is a roadmap planner (svmp, prm, local), and when the
-  // planner's own repair fails.
+  // being repaired is not registered or builds a roadmap or model per call (svmp, prm, local, svpp),
+  // and when the planner's own repair fails.
   PathRepairer(const PlanningContext& exact, std::string fallback_planner = "ompl-rrtconnect");
 
   // Verifies `path` (start and goal valid under the exact checker) and repairs its failing stretches

@@ -145,10 +145,4 @@ double FastronModel::value(const float* x) const {
   return fastron_loops::weightedSum(points, weights_.data(), x, static_cast<float>(options_.gamma / 2));
 }
 
-void FastronModel::valueBatch(const float* queries, long stride, int B, double* out) const {
-  const fastron_loops::PointsSoA points{coords_.data(), stride_, dim_, block_, support_};
-  fastron_loops::weightedSumBatch(points, weights_.data(), queries, stride, B,
-                                  static_cast<float>(options_.gamma / 2), out);
-}
-
 }  // namespace svmp::svm

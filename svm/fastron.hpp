@@ -64,8 +64,6 @@ class FastronModel {
   // f(x) for one feature vector of dim floats.
   double value(const float* x) const;
   bool inCollision(const float* x) const { return value(x) > 0; }
-  // f at B queries stored as dim rows of `stride` floats (structure of arrays), written to out[0..B).
-  void valueBatch(const float* queries, long stride, int B, double* out) const;
 
   int dim() const { return dim_; }
   int block() const { return block_; }

@@ -8,7 +8,6 @@
 #include <immintrin.h>
 
 #include <algorithm>
-#include <vector>
 
 namespace svmp::svm::fastron_loops {
 namespace {
@@ -157,15 +156,6 @@ double weightedSum(const PointsSoA& p, const float* weight, const float* z, floa
   if (p.dim <= 48 && kHaveAvx512) return sumAvx512(p, weight, z, half_gamma);
   if (p.dim <= 48 && kHaveAvx2) return sumAvx2(p, weight, z, half_gamma);
   return sumImpl(p, weight, z, half_gamma);
-}
-
-void weightedSumBatch(const PointsSoA& p, const float* weight, const float* queries, long query_stride,
-                      int B, float half_gamma, double* out) {
-  std::vector<float> z(p.dim);
-  for (int b = 0; b < B; ++b) {
-    for (int k = 0; k < p.dim; ++k) z[k] = queries[k * query_stride + b];
-    out[b] = weightedSum(p, weight, z.data(), half_gamma);
-  }
 }
 
 }  // namespace svmp::svm::fastron_loops

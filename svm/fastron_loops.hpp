@@ -2,8 +2,8 @@
 // quadratic kernel k(x, y) = (1 + (g/2)|x - y|^2)^-2, applied to whole feature vectors (Fastron RBF,
 // block = dim) or to consecutive blocks of them and summed (the FK kernel: one block of 3 per control
 // point, eq. 4). Points are stored as a structure of arrays in float (row k of coordinate k at
-// xs + k * stride), so a query is one pass of 8-lane arithmetic over the support set. Dispatched at run
-// time to AVX2+FMA or the baseline ISA.
+// xs + k * stride), so a query is one pass of 16-lane (AVX-512) or 8-lane (AVX2+FMA) arithmetic over
+// the support set, dispatched at run time, with a scalar baseline.
 // weightedSum needs `n` padded with zero weights and zero coordinates to a multiple of 16.
 // Thread safety: pure functions; scratch lives on the stack.
 #pragma once
@@ -22,12 +22,6 @@ struct PointsSoA {
 void kernelColumn(const PointsSoA& points, const float* z, float half_gamma, float* out);
 // sum_j weight[j] k(x_j, z): the model's value at one query.
 double weightedSum(const PointsSoA& points, const float* weight, const float* z, float half_gamma);
-// out[b] = sum_j weight[j] k(x_j, z_b) for B queries (queries: dim rows of stride `query_stride`).
-// One query after another: swapping the loops (queries across the lanes, support points outside) was
-// measured slower (docs/fastron.md).
-void weightedSumBatch(const PointsSoA& points, const float* weight, const float* queries,
-                      long query_stride, int B, float half_gamma, double* out);
-
 bool usingAvx2();
 
 }  // namespace svmp::svm::fastron_loops

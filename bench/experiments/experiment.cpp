@@ -84,10 +84,10 @@ struct Proxy {
     log << "svmp-plan: " << options.checker << ": " << s.labelled << " configurations labelled in " << s.label_ms
         << " ms, learned in " << s.learn_ms << " ms: " << s.train.support << " support points"
         << (s.train.converged ? "" : " (not converged)") << "\n";
-    validator = std::make_unique<cspace::FastronMotionValidator>(*checker, exact.space, scenario.resolution);
+    validator = std::make_unique<cspace::DiscreteMotionValidator>(*checker, exact.space, scenario.resolution);
   }
   std::unique_ptr<cspace::FastronChecker> checker;
-  std::unique_ptr<cspace::FastronMotionValidator> validator;
+  std::unique_ptr<cspace::DiscreteMotionValidator> validator;  // the thesis' sampled validator, on the proxy
 };
 
 // Everything a run shares: the space, the exact checker, the thesis' sampled validator, the certifier

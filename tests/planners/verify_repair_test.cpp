@@ -20,7 +20,7 @@ struct ProxyWorld {
   PlanningContext exact{w->space, w->checker, w->validator, 1, &certifier};
   PathRepairer repairer{exact};
   std::unique_ptr<cspace::FastronChecker> proxy;
-  std::unique_ptr<cspace::FastronMotionValidator> proxy_validator;
+  std::unique_ptr<cspace::DiscreteMotionValidator> proxy_validator;
   ProxyWorld() {
     std::string moved = yaml;
     for (size_t at; (at = moved.find("position: [0.5,")) != std::string::npos;) moved.replace(at, 15, "position: [0.25,");
@@ -28,7 +28,7 @@ struct ProxyWorld {
     proxy = std::make_unique<cspace::FastronChecker>(
         w->scenario.robot, cspace::FastronCheckerOptions::defaults(cspace::FastronFeatures::kJoints));
     proxy->train(stale->checker, 1, {w->query().start, w->query().goal});
-    proxy_validator = std::make_unique<cspace::FastronMotionValidator>(*proxy, w->space, w->scenario.resolution);
+    proxy_validator = std::make_unique<cspace::DiscreteMotionValidator>(*proxy, w->space, w->scenario.resolution);
   }
   PlanningContext context() const {
     return PlanningContext{w->space, *proxy, *proxy_validator, 1, &certifier, &repairer};

@@ -47,10 +47,8 @@ TestSet makeTestSet(const robots::Robot& robot, const cspace::ValidityChecker& e
       t.segments.col(s * kSegmentLength + i) = a + (b - a) * (0.125 * i / (kSegmentLength - 1));
   }
   t0 = Clock::now();
-  int hits = 0;
-  for (Eigen::Index c = 0; c < t.segments.cols(); ++c) hits += exact.check(t.segments.col(c)) != cspace::kFree;
+  for (Eigen::Index c = 0; c < t.segments.cols(); ++c) exact.check(t.segments.col(c));  // counted: not elided
   t.fcl_batch_us = usSince(t0) / t.segments.cols();
-  (void)hits;
   return t;
 }
 

@@ -8,6 +8,7 @@
 
 #include "bench/experiments/output_text.hpp"
 #include "cspace/certified_motion_validator.hpp"
+#include "cspace/motion_validator.hpp"
 #include "planners/path_simplifier.hpp"
 #include "planners/planner_registry.hpp"
 #include "planners/verify_repair.hpp"
@@ -76,7 +77,7 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
       std::vector<CheckerWorld> worlds;
       worlds.push_back({"fcl", exact.get(), nullptr});
       for (auto [name, proxy] : {std::pair{"fastron-fk", &fk}, std::pair{"fastron-rbf", &rbf}})
-        worlds.push_back({name, proxy, std::make_unique<cspace::FastronMotionValidator>(*proxy, space, scenario.resolution)});
+        worlds.push_back({name, proxy, std::make_unique<cspace::DiscreteMotionValidator>(*proxy, space, scenario.resolution)});
       for (const auto& planner_name : options.planners) {
         for (const auto& w : worlds) {
           const cspace::MotionValidator& validator =
