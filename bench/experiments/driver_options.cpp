@@ -31,7 +31,8 @@ double parseDouble(const std::string& flag, const std::string& value, double min
 const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
          "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify [svpp]]\n"
-         "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--checker NAME] [--check]\n"
+         "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--checker NAME] [--queries N]\n"
+         "                 [--check]\n"
          "  --planners  comma-separated: svmp, prm, local, svpp, ompl-prm, ompl-lazyprm, ompl-rrtconnect,\n"
          "              ompl-rrt, ompl-sbl, ompl-rrtstar, ompl-fmt, ompl-informedrrtstar\n"
          "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
@@ -40,6 +41,8 @@ const char* driverUsage() {
          "              text file per solved run (one configuration a line)\n"
          "  --simplify  shortcut and reduce every solved path, each new segment certified; --simplify svpp:\n"
          "              follow an SVM separating the obstacles by the side of the path instead (point robots)\n"
+         "  --queries   N random valid start-goal pairs (from --seed) instead of the file's queries; roadmap\n"
+         "              planners build once per run and answer all of them\n"
          "  --checker   fcl (default), fastron-fk or fastron-rbf: plan on a learned proxy checker; every\n"
          "              path is verified on FCL and its invalid stretches replanned (verify and repair)\n"
          "  --check     print the scenario's summary, validate planners and --set, verify the witness\n";
@@ -64,6 +67,7 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, 1L << 62));
     else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, 1024));
     else if (flag == "--time-limit") o.time_limit = parseDouble(flag, value(), 1e-6, 1e7);
+    else if (flag == "--queries") o.queries = static_cast<int>(parseLong(flag, value(), 1, 100000));
     else if (flag == "--checker") {
       o.checker = value();
       if (o.checker != "fcl" && o.checker != "fastron-fk" && o.checker != "fastron-rbf")

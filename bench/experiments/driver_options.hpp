@@ -12,6 +12,7 @@ struct DriverOptions {
   int runs = 1;
   unsigned long seed = 1;
   int threads = 1;
+  int queries = 0;  // --queries N: N seeded random valid start-goal pairs instead of the file's queries
   std::string checker = "fcl";  // --checker: fcl, fastron-fk or fastron-rbf (learned proxy, verify and repair)
   double time_limit = 0;  // seconds per run (build and queries); 0: none
   std::string json_path;

@@ -35,6 +35,14 @@ Stats collect(const PlannerRuns& runs, bool solved_only, F field) {
 
 using Clock = planners::Clock;
 
+// The build time of each run (carried by its first query's record).
+std::vector<double> buildTimes(const PlannerRuns& runs) {
+  std::vector<double> builds;
+  for (const RunRecord& r : runs.runs)
+    if (r.query == 0) builds.push_back(r.build_ms);
+  return builds;
+}
+
 // Folds the build's counters and phase times into the first query's result.
 void addBuild(const planners::PlanResult& build, planners::PlanResult& query) {
   query.collision_checks += build.collision_checks;
@@ -169,6 +177,26 @@ int PlannerRuns::certified() const {
   return static_cast<int>(std::count_if(runs.begin(), runs.end(), [](const RunRecord& r) { return r.result.certified; }));
 }
 
+std::vector<cspace::Query> randomQueries(const cspace::Scenario& scenario, int count, std::uint64_t seed) {
+  const cspace::ConfigurationSpace space = scenario.makeSpace();
+  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
+  cspace::Rng rng(seed ^ 0x51E7D0C5ULL);
+  std::vector<cspace::Query> queries;
+  auto draw = [&](Eigen::VectorXd& q) {
+    for (long tries = 0; tries < 1000; ++tries)
+      if (space.sampleUniform(rng, q), checker.isValid(q)) return true;
+    return false;
+  };
+  Eigen::VectorXd start(space.dim()), goal(space.dim());
+  while (static_cast<int>(queries.size()) < count) {
+    if (!draw(start) || !draw(goal))
+      throw cspace::ScenarioError(scenario.path + ": --queries " + std::to_string(count) + ": 1000 uniform draws in a row "
+                                  "found no valid configuration (after " + std::to_string(queries.size()) + " pairs)");
+    if (start != goal) queries.push_back({start, goal, {}});
+  }
+  return queries;
+}
+
 void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options) {
   std::ostringstream quiet;
   const World world(scenario, options, quiet);
@@ -209,6 +237,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         record.time_ms = planners::msSince(t0);
         if (i == 0 && queries.size() > 1 && planner.built()) {
           record.time_ms += build_ms;
+          record.build_ms = build_ms;
           addBuild(build, record.result);
         }
         record.raw_length = planners::pathLength(record.result.path, world.space);
@@ -272,6 +301,28 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
         << (options.simplify ? pad(meanStd(collect(runs, true, [](const RunRecord& r) { return r.raw_length; }), 3), w) : "")
         << meanStd(collect(runs, true, [](const RunRecord& r) { return r.min_clearance; }), 4) << "\n";
   }
+  if (scenario.queries.size() > 1) {
+    out << "\n" << scenario.queries.size() << " queries per run, one build per run: build and query time (ms, "
+        << "median over runs / over queries), queries solved, total time per run (build + all queries, mean)\n";
+    out << std::left << std::setw(17) << "planner" << std::setw(14) << "solved" << std::setw(12) << "build"
+        << std::setw(12) << "per query" << "total per run\n";
+    for (const auto& runs : results) {
+      const std::vector<double> builds = buildTimes(runs);
+      std::vector<double> per_query, totals(options.runs, 0.0);
+      for (size_t i = 0; i < runs.runs.size(); ++i) {
+        const RunRecord& r = runs.runs[i];
+        per_query.push_back(r.time_ms - r.build_ms);
+        totals[i / scenario.queries.size()] += r.time_ms;
+      }
+      std::ostringstream solved, b, q, t;
+      solved << runs.solved() << "/" << runs.runs.size();
+      b << std::fixed << std::setprecision(1) << statsOf(builds).median;
+      q << std::fixed << std::setprecision(2) << statsOf(per_query).median;
+      t << std::fixed << std::setprecision(1) << statsOf(totals).mean;
+      out << std::left << std::setw(17) << runs.planner << std::setw(14) << solved.str() << std::setw(12) << b.str()
+          << std::setw(12) << q.str() << t.str() << "\n";
+    }
+  }
   out << std::right;
 }
 
@@ -295,6 +346,8 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
       << ",\n      \"local_planner_calls\": " << field([](const RunRecord& r) { return double(r.result.local_planner_calls); })
       << ",\n      \"distance_queries\": " << field([](const RunRecord& r) { return double(r.result.distance_queries); })
       << ",\n      \"certified_segments\": " << field([](const RunRecord& r) { return double(r.result.certified_segments); })
+      << ",\n      \"build_ms\": " << jsonStats(statsOf(buildTimes(runs)))
+      << ",\n      \"query_ms\": " << field([](const RunRecord& r) { return r.time_ms - r.build_ms; })
       << ",\n      \"repaired_stretches\": " << field([](const RunRecord& r) { return double(r.result.repaired_stretches); })
       << ",\n      \"exact_checks\": " << field([](const RunRecord& r) { return double(r.result.exact_checks); })
       << ",\n      \"milestones\": " << field([](const RunRecord& r) { return double(r.result.milestones); })

@@ -19,6 +19,7 @@ struct RunRecord {
   std::uint64_t seed = 0;
   int query = 0;             // index into the scenario's queries
   double time_ms = 0;        // wall time of solve() (first query: with the build)
+  double build_ms = 0;       // the build's share of time_ms (several queries, first query only)
   double path_length = 0;    // weighted metric, solved runs only (after simplification, when asked)
   double raw_length = 0;     // before simplification
   double smoothness = 0;     // OMPL's PathGeometric::smoothness of the final path
@@ -36,6 +37,11 @@ struct PlannerRuns {
 // Builds every planner of `options` with the scenario's parameters and --set overrides, as a run would,
 // and drops them: throws cspace::ScenarioError naming the planner, field and value (svmp-plan --check).
 void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options);
+
+// `count` start-goal pairs of configurations drawn uniformly (seeded) and valid under the exact
+// checker, start != goal (svmp-plan --queries). Throws cspace::ScenarioError when fewer than `count`
+// valid pairs turn up in 1000 * count draws.
+std::vector<cspace::Query> randomQueries(const cspace::Scenario& scenario, int count, std::uint64_t seed);
 
 // Throws cspace::ScenarioError for unknown planners or bad parameters (before any run starts).
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,

@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
     return 0;
   }
   try {
-    const cspace::Scenario scenario = cspace::loadScenario(options.scenario);
+    cspace::Scenario scenario = cspace::loadScenario(options.scenario);
+    if (options.queries > 0) scenario.queries = experiments::randomQueries(scenario, options.queries, options.seed);
     if (options.check) {
       experiments::validatePlanners(scenario, options);
       return experiments::printScenarioCheck(scenario, std::cout) ? 0 : 1;

@@ -10,6 +10,7 @@
 
 #include "bench/experiments/experiment.hpp"
 #include "bench/experiments/output_text.hpp"
+#include "cspace/collision_checker.hpp"
 
 namespace svmp::experiments {
 namespace {
@@ -89,6 +90,39 @@ TEST(DriverOutput, PathsAndResultsParseBackWithTheSameValues) {
         EXPECT_LE(r.path_length, r.raw_length + 1e-12);
       }
   fs::remove_all(dir);
+}
+
+TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
+  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
+  cspace::Scenario scenario = cspace::loadScenario(path);
+  const auto queries = randomQueries(scenario, 12, 5);
+  ASSERT_EQ(queries.size(), 12u);
+  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
+  for (const auto& q : queries) {
+    EXPECT_TRUE(checker.isValid(q.start));
+    EXPECT_TRUE(checker.isValid(q.goal));
+    EXPECT_NE(q.start, q.goal);
+  }
+  const auto again = randomQueries(scenario, 12, 5);
+  for (size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(queries[i].start, again[i].start);
+  EXPECT_NE(randomQueries(scenario, 1, 6).front().start, queries.front().start);
+
+  scenario.queries = queries;
+  DriverOptions options;
+  options.scenario = path;
+  options.planners = {"svmp"};
+  options.runs = 2;
+  std::ostringstream log, table;
+  const auto results = runExperiment(scenario, options, log);
+  ASSERT_EQ(results[0].runs.size(), 24u);
+  for (const auto& r : results[0].runs) {
+    EXPECT_EQ(r.build_ms > 0, r.query == 0) << "query " << r.query;  // one build per run
+    if (r.result.solved()) {
+      EXPECT_TRUE(r.result.certified);
+    }
+  }
+  printTable(scenario, options, results, table);
+  EXPECT_NE(table.str().find("12 queries per run, one build per run"), std::string::npos) << table.str();
 }
 
 TEST(DriverOutput, FileNamesCannotLeaveTheirDirectory) {
