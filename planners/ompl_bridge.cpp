@@ -4,8 +4,8 @@
 // Latombe 2003), RRT* (Karaman, Frazzoli 2011), FMT* (Janson et al. 2015) and Informed RRT* (Gammell et
 // al. 2014) run on the same scenarios with the same checking resolution and counters. The optimizing
 // planners (RRT*, FMT*, Informed RRT*) stop at their first solution by default (path length objective
-// with an infinite cost threshold), as in Das & Yip 2019 sec. IV-B. OMPL works on coordinates scaled by sqrt(w), where its
-// Euclidean distance is the weighted metric of thesis eq. 4.3.
+// with an infinite cost threshold), as in Das & Yip 2019 sec. IV-B. OMPL works on coordinates scaled
+// by sqrt(w), where its Euclidean distance is the weighted metric of thesis eq. 4.3.
 // Parameters (scenario `planners.ompl-*`): time_limit (s, default 10), range (the tree planners, 0 =
 // OMPL's default), k (PRM neighbours, 0 = OMPL's default), first_solution (optimizing planners, default
 // true; false runs them until the time limit).
@@ -20,6 +20,7 @@
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/StateValidityChecker.h>
+#include <ompl/base/spaces/RealVectorStateProjections.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/planners/prm/LazyPRM.h>
@@ -170,7 +171,12 @@ class OmplPlanner final : public Planner {
     auto si = std::make_shared<ob::SpaceInformation>(space);
     si->setStateValidityChecker(std::make_shared<StateChecker>(si, context_));
     si->setMotionValidator(std::make_shared<SegmentValidator>(si, context_));
-    si->setup();
+    si->setup();  // registers the space's default projection, so ours comes after it
+    // OMPL 1.5's identity projection (its default for dim <= 2) resizes an Eigen::Ref and aborts in
+    // Debian's build (projection planners such as SBL); a linear identity projection does the same work.
+    if (dim <= 2)
+      space->registerDefaultProjection(std::make_shared<ob::RealVectorLinearProjectionEvaluator>(
+          space, ob::ProjectionMatrix::Matrix(Eigen::MatrixXd::Identity(dim, dim))));
     auto pdef = std::make_shared<ob::ProblemDefinition>(si);
     ob::ScopedState<> start(space), goal(space);
     for (int i = 0; i < dim; ++i) {

@@ -73,8 +73,9 @@ void measurePath(const cspace::Scenario& scenario, const cspace::ConfigurationSp
   }
 }
 
-// With --checker fastron-*: the proxy (trained once, on the scenario's query end points too), its
-// batched validator, and verify and repair on the exact checker (Das & Yip 2019, sec. IV-B).
+// With --checker fastron-*: the proxy (trained once, on the scenario's query end points too) and the
+// thesis' sampled validator on it; World's repairer verifies and repairs on the exact checker (Das &
+// Yip 2019, sec. IV-B).
 struct Proxy {
   Proxy(const cspace::Scenario& scenario, const DriverOptions& options, const planners::PlanningContext& exact,
         std::ostream& log) {

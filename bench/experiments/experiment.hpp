@@ -39,8 +39,8 @@ struct PlannerRuns {
 void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options);
 
 // `count` start-goal pairs of configurations drawn uniformly (seeded) and valid under the exact
-// checker, start != goal (svmp-plan --queries). Throws cspace::ScenarioError when fewer than `count`
-// valid pairs turn up in 1000 * count draws.
+// checker, start != goal (svmp-plan --queries). Throws cspace::ScenarioError when 1000 draws in a row
+// find no valid configuration.
 std::vector<cspace::Query> randomQueries(const cspace::Scenario& scenario, int count, std::uint64_t seed);
 
 // Throws cspace::ScenarioError for unknown planners or bad parameters (before any run starts).

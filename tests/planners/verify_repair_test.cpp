@@ -56,6 +56,24 @@ TEST(VerifyRepair, PathsOnAStaleProxyAreCertifiedOnTheExactChecker) {
   EXPECT_GT(repaired, 0) << "the stale proxy never needed a repair: the test would not exercise it";
 }
 
+// The OMPL planners added for the Fastron experiments, on the exact checker with verify and repair as
+// the driver runs them: each solves the gap and returns a certified path that a dense re-check accepts.
+TEST(VerifyRepair, EveryOmplTreePlannerReturnsCertifiedPaths) {
+  const auto w = test::makeWorld(test::gapScenario(0.15, "  ompl-rrt: {}\n"));
+  const cspace::CertifiedMotionValidator certifier(w->checker, w->space, w->scenario.resolution);
+  const PlanningContext repair_context{w->space, w->checker, certifier, 1, &certifier};
+  const PathRepairer repairer(repair_context);
+  const PlanningContext context{w->space, w->checker, w->validator, 1, &certifier, &repairer};
+  for (const char* name : {"ompl-rrt", "ompl-sbl", "ompl-rrtstar", "ompl-fmt", "ompl-informedrrtstar"}) {
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      const PlanResult r = makePlanner(name, context, cspace::ParameterSet())->solve(w->query(), seed, Termination::after(10));
+      ASSERT_TRUE(r.solved()) << name << " seed " << seed << ": " << r.message;
+      EXPECT_TRUE(r.certified) << name;
+      EXPECT_TRUE(test::pathIsValid(*w, r.path)) << name << " seed " << seed;
+    }
+  }
+}
+
 TEST(VerifyRepair, AStraightPathThroughTheWallIsReplannedAroundIt) {
   const ProxyWorld pw;
   std::vector<Eigen::VectorXd> path = {pw.w->query().start, Eigen::Vector2d(0.5, 0.2), pw.w->query().goal};
