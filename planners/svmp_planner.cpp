@@ -7,6 +7,7 @@
 #include <random>
 
 #include "planners/planner_registry.hpp"
+#include "planners/class_colouring.hpp"
 #include "planners/roadmap_builder.hpp"
 
 namespace svmp::planners {
@@ -30,6 +31,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
   o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
   o.kernel = params.getString("kernel", o.kernel, {"rbf", "fk"});
+  o.classes = params.getString("classes", o.classes, {"auto", "obstacle", "colour"});
   o.fk_sigma = params.getDouble("fk_sigma", o.fk_sigma, -1, 1e6);
   return o;
 }
@@ -42,6 +44,8 @@ std::string SvmpOptions::validate() const {
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2)";
   if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
   if (kernel != "rbf" && kernel != "fk") return "kernel must be rbf or fk, got " + kernel;
+  if (classes != "auto" && classes != "obstacle" && classes != "colour")
+    return "classes must be auto, obstacle or colour, got " + classes;
   if (!std::isfinite(fk_sigma)) return "fk_sigma must be finite";
   return "";
 }
@@ -121,12 +125,31 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   svm::SolverOptions solver;
   solver.eps = options_.eps;
   solver.cache_mb = options_.cache_mb;
+  // Classes: one per obstacle, or colours of the obstacles' adjacency graph (weight: the largest of
+  // the colour's obstacles, so no obstacle's penalty drops).
+  class_of_label_.clear();
+  const bool colour = options_.classes == "colour" || (options_.classes == "auto" && weights.size() > 8);
+  if (colour) {
+    class_of_label_ = colourClasses(samples_.points, samples_.labels, context_.space.metricScale(), 3 * options_.sigma);
+    // No two obstacles adjacent: still two models (one-versus-rest needs a rest).
+    bool one = true;
+    for (const auto& [label, c] : class_of_label_) one = one && c == 1;
+    if (one) class_of_label_.begin()->second = 2;
+  } else
+    for (const auto& [label, w] : weights) class_of_label_[label] = label;
+  std::vector<int> classes(samples_.labels.size());
+  for (size_t i = 0; i < classes.size(); ++i) classes[i] = class_of_label_.at(samples_.labels[i]);
+  std::map<int, double> class_weights;
+  for (const auto& [label, w] : weights) {
+    double& cw = class_weights[class_of_label_.at(label)];
+    cw = std::max(cw, w);
+  }
   const bool fk = options_.kernel == "fk";
   const robots::Robot& robot = context_.checker.robot();
   const double reach = robot.jointReach().size() > 0 ? robot.jointReach()[0] : 0.0;
   const double fk_sigma = options_.fk_sigma > 0 ? options_.fk_sigma : reach > 0 ? 0.05 * reach : 0.1;
-  risk_.emplace(RiskFunction::trainOneVsRest(samples_.points, samples_.labels, fk ? fk_sigma : options_.sigma,
-                                             options_.C, weights, solver, context_.space.metricScale(),
+  risk_.emplace(RiskFunction::trainOneVsRest(samples_.points, classes, fk ? fk_sigma : options_.sigma,
+                                             options_.C, class_weights, solver, context_.space.metricScale(),
                                              options_.truncated, context_.threads,
                                              fk ? &robot : nullptr));
   times.training_ms += msSince(t0);
@@ -199,7 +222,7 @@ bool SvmpPlanner::findBoundaryMilestones(PhaseTimes& times, const Termination& s
   for (int i = 0; i < samples_.size(); ++i) {
     if (!samples_.boundary[i]) continue;
     starts.push_back(samples_.points.col(i));
-    classes.push_back(risk_->classIndex(samples_.labels[i]));
+    classes.push_back(risk_->classIndex(class_of_label_.at(samples_.labels[i])));
   }
   addMilestones(starts, classes, stop);
   times.milestones_ms += msSince(t0);

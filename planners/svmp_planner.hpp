@@ -9,6 +9,7 @@
 // The roadmap answers many queries: build() once, query() many times; clear() forgets it.
 // Parameters (scenario `planners.svmp`, `--set svmp.KEY=VALUE`): the fields of SvmpOptions, same names.
 // Thread safety: as every Planner (planners/planner.hpp); OpenMP inside over trees, descents, checks.
+#include <map>
 #include <optional>
 
 #include "planners/obstacle_sampler.hpp"
@@ -42,6 +43,10 @@ struct SvmpOptions {
   // fk_sigma <= 0: 5% of the robot's reach (the reach of its first joint).
   std::string kernel = "rbf";
   double fk_sigma = -1;
+  // One-versus-rest classes: "obstacle" (the thesis: one per obstacle and the self-collision region),
+  // "colour" (obstacles whose samples come within 3 sigma share a model only if not adjacent,
+  // planners/class_colouring.hpp), "auto" (colour above 8 classes, so the thesis' cases keep theirs).
+  std::string classes = "auto";
 
   // Reads every field from `params` under its own name, with its bounds; absent keys keep the
   // defaults above (the one place they are written). Throws cspace::ScenarioError.
@@ -105,6 +110,7 @@ class SvmpPlanner final : public Planner {
   std::optional<RiskFunction> risk_;
   Roadmap roadmap_;
   std::optional<NearestNeighbors> nn_;
+  std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
 };
 
 }  // namespace svmp::planners
