@@ -27,6 +27,7 @@ struct Flags {
   std::string scenario, experiment = "all", json, svg;
   int trials = 50, moves = 30, test_samples = 2000, obstacle_trials = 3, plans_per_move = 10;
   double time_limit = 10;
+  bool help = false;
   std::uint64_t seed = 1;
   std::string planners;
   std::map<std::string, cspace::ParameterSet> params;  // fastron-fk, fastron-rbf
@@ -57,7 +58,10 @@ Flags parse(int argc, char** argv) {
     f.params[name] = cspace::ParameterSet("flag --set", std::string(name) + ".", {});
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
-    if (flag == "--help") throw std::logic_error("help");
+    if (flag == "--help" || flag == "-h") {
+      f.help = true;
+      return f;
+    }
     if (i + 1 >= argc) throw cspace::ScenarioError("flag " + flag + " needs a value (or is unknown)");
     const std::string v = argv[++i];
     if (flag == "--scenario") f.scenario = v;
@@ -97,12 +101,13 @@ int main(int argc, char** argv) {
   Flags flags;
   try {
     flags = parse(argc, argv);
-  } catch (const std::logic_error&) {
-    std::cout << kUsage;
-    return 0;
   } catch (const std::exception& e) {
     std::cerr << "svmp-fastron: " << e.what() << "\n" << kUsage;
     return 2;
+  }
+  if (flags.help) {
+    std::cout << kUsage;
+    return 0;
   }
   try {
     const cspace::Scenario scenario = cspace::loadScenario(flags.scenario);
