@@ -1,7 +1,9 @@
 # Compiler settings shared by every target (added through svmp_settings).
 add_library(svmp_settings INTERFACE)
-target_include_directories(svmp_settings INTERFACE ${PROJECT_SOURCE_DIR})
-target_compile_options(svmp_settings INTERFACE -Wall -Wextra -Wpedantic -Wno-unused-parameter)
+# Includes are written from the repository root ("svm/kernel.hpp"); installed, from include/svmp.
+target_include_directories(svmp_settings INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+                                                   $<INSTALL_INTERFACE:include/svmp>)
+target_compile_options(svmp_settings INTERFACE $<BUILD_INTERFACE:-Wall -Wextra -Wpedantic -Wno-unused-parameter>)
 if(SVMP_NATIVE)
   target_compile_options(svmp_settings INTERFACE -march=native)
 endif()
