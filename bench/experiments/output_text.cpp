@@ -76,4 +76,17 @@ std::string meanStd(const Stats& s, int precision) {
   return o.str();
 }
 
+std::string svgNumber(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2f", v);
+  return buffer;
+}
+
+std::string escapeXml(const std::string& text) {
+  std::string out;
+  for (char ch : text)
+    out += ch == '&' ? "&amp;" : ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : std::string(1, ch);
+  return out;
+}
+
 }  // namespace svmp::experiments

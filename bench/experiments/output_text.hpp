@@ -13,6 +13,11 @@ std::string jsonString(const std::string& text);
 // "../../x" cannot name a file outside the directory it is joined to. Never empty.
 std::string safeFileName(const std::string& text);
 
+// A coordinate or length in SVG output: two decimals.
+std::string svgNumber(double v);
+// `text` with &, < and > escaped for XML character data.
+std::string escapeXml(const std::string& text);
+
 // Mean, sample standard deviation and median of a set of numbers (all 0 when empty).
 struct Stats {
   double mean = 0, std = 0, median = 0;

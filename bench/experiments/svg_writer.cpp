@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/output_text.hpp"
 #include "cspace/collision_checker.hpp"
 #include "planners/geometry.hpp"
 #include "robots/point_robot.hpp"
@@ -32,19 +33,6 @@ const char* classColour(int obstacle_id) {
   return obstacle_id < 1 ? "#7f7f7f" : kPalette[(obstacle_id - 1) % 8];
 }
 
-std::string num(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.2f", v);
-  return buffer;
-}
-
-std::string escapeXml(const std::string& text) {
-  std::string out;
-  for (char ch : text)
-    out += ch == '&' ? "&amp;" : ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : std::string(1, ch);
-  return out;
-}
-
 // A plot of the y-up data rectangle [lower, upper] on the y-down SVG page, aspect ratio kept within
 // [1/3, 3] (equal scales unless that would flatten the plot).
 class Canvas {
@@ -58,7 +46,7 @@ class Canvas {
   }
   double px(double x) const { return kLeft + (x - lower_.x()) * scale_.x(); }
   double py(double y) const { return kTop + (upper_.y() - y) * scale_.y(); }
-  std::string xy(const Point& p) const { return num(px(p.x())) + "," + num(py(p.y())); }
+  std::string xy(const Point& p) const { return svgNumber(px(p.x())) + "," + svgNumber(py(p.y())); }
   std::ostringstream& out() { return body_; }
 
   void polyline(const Polygon& points, const std::string& style, bool closed = false) {
@@ -68,13 +56,13 @@ class Canvas {
   }
   // r in px.
   void circle(const Point& c, double r, const std::string& style) {
-    body_ << "<circle cx=\"" << num(px(c.x())) << "\" cy=\"" << num(py(c.y())) << "\" r=\""
-          << num(r) << "\" " << style << "/>\n";
+    body_ << "<circle cx=\"" << svgNumber(px(c.x())) << "\" cy=\"" << svgNumber(py(c.y())) << "\" r=\""
+          << svgNumber(r) << "\" " << style << "/>\n";
   }
   void rect(const Point& lo, const Point& hi, const std::string& style) {
-    body_ << "<rect x=\"" << num(px(lo.x())) << "\" y=\"" << num(py(hi.y())) << "\" width=\""
-          << num((hi.x() - lo.x()) * scale_.x()) << "\" height=\""
-          << num((hi.y() - lo.y()) * scale_.y()) << "\" " << style << "/>\n";
+    body_ << "<rect x=\"" << svgNumber(px(lo.x())) << "\" y=\"" << svgNumber(py(hi.y())) << "\" width=\""
+          << svgNumber((hi.x() - lo.x()) * scale_.x()) << "\" height=\""
+          << svgNumber((hi.y() - lo.y()) * scale_.y()) << "\" " << style << "/>\n";
   }
   // A marker of half-size h px: a square, or a diamond.
   void marker(const Point& c, double h, bool diamond, const std::string& style) {
@@ -82,8 +70,8 @@ class Canvas {
     const double dx[4] = {-h, h, h, -h}, dy[4] = {-h, -h, h, h};
     body_ << "<polygon points=\"";
     for (int i = 0; i < 4; ++i)
-      body_ << num(x + (diamond ? (dx[i] - dy[i]) / 1.4 : dx[i])) << ','
-            << num(y + (diamond ? (dx[i] + dy[i]) / 1.4 : dy[i])) << ' ';
+      body_ << svgNumber(x + (diamond ? (dx[i] - dy[i]) / 1.4 : dx[i])) << ','
+            << svgNumber(y + (diamond ? (dx[i] + dy[i]) / 1.4 : dy[i])) << ' ';
     body_ << "\" " << style << "/>\n";
   }
 
@@ -96,30 +84,30 @@ class Canvas {
     const double right = kLeft + width_, bottom = kTop + height_;
     std::ostringstream s;
     const auto text = [&s](double x, double y, const char* anchor, int size, const std::string& t) {
-      s << "<text x=\"" << num(x) << "\" y=\"" << num(y) << "\" text-anchor=\"" << anchor
+      s << "<text x=\"" << svgNumber(x) << "\" y=\"" << svgNumber(y) << "\" text-anchor=\"" << anchor
         << "\" font-size=\"" << size << "\">" << escapeXml(t) << "</text>\n";
     };
-    const std::string frame = "x=\"" + num(kLeft) + "\" y=\"" + num(kTop) + "\" width=\"" +
-                              num(width_) + "\" height=\"" + num(height_) + "\"";
-    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(w) << "\" height=\"" << num(h)
+    const std::string frame = "x=\"" + svgNumber(kLeft) + "\" y=\"" + svgNumber(kTop) + "\" width=\"" +
+                              svgNumber(width_) + "\" height=\"" + svgNumber(height_) + "\"";
+    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << svgNumber(w) << "\" height=\"" << svgNumber(h)
       << "\" font-family=\"sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<clipPath id=\"plot\"><rect " << frame << "/></clipPath>\n";
     text(kLeft, 18, "start", 15, title);
     text(kLeft, 33, "start", 10, subtitle);
     double x = kLeft;
     for (const auto& [colour, name] : legend) {
-      s << "<rect x=\"" << num(x) << "\" y=\"40\" width=\"10\" height=\"10\" fill=\"" << colour
+      s << "<rect x=\"" << svgNumber(x) << "\" y=\"40\" width=\"10\" height=\"10\" fill=\"" << colour
         << "\"/>\n";
       text(x + 13, 49, "start", 10, name);
       x += 22 + 6.0 * name.size();
     }
     s << "<g clip-path=\"url(#plot)\">\n"
       << body_.str() << "</g>\n<rect " << frame << " fill=\"none\" stroke=\"black\"/>\n";
-    text(kLeft, bottom + 15, "middle", 11, num(lower_.x()));
-    text(right, bottom + 15, "middle", 11, num(upper_.x()));
+    text(kLeft, bottom + 15, "middle", 11, svgNumber(lower_.x()));
+    text(right, bottom + 15, "middle", 11, svgNumber(upper_.x()));
     text(kLeft + width_ / 2, bottom + 32, "middle", 11, x_name);
-    text(kLeft - 4, bottom, "end", 11, num(lower_.y()));
-    text(kLeft - 4, kTop + 10, "end", 11, num(upper_.y()));
+    text(kLeft - 4, bottom, "end", 11, svgNumber(lower_.y()));
+    text(kLeft - 4, kTop + 10, "end", 11, svgNumber(upper_.y()));
     text(kLeft - 8, kTop + height_ / 2, "end", 11, y_name);
     s << "</svg>\n";
     return s.str();
@@ -265,7 +253,7 @@ bool writeConfigurationSpaceSvg(const std::string& file, const SvgContent& conte
     for (int k = 0; k < classes; ++k)
       canvas.out() << "<path fill=\"none\" stroke=\"" << classColour(content.risk->classes()[k])
                    << "\" stroke-width=\""
-                   << num(1.2 + 2.0 * (classes - 1 - k) / std::max(classes - 1, 1))
+                   << svgNumber(1.2 + 2.0 * (classes - 1 - k) / std::max(classes - 1, 1))
                    << "\" stroke-linecap=\"round\" d=\""
                    << zeroLevelSetPath(canvas, *content.risk, k, lo, hi) << "\"/>\n";
     subtitle << "; lines: F_k = 0";

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/output_text.hpp"
 #include "planners/geometry.hpp"
 
 namespace svmp::experiments {
@@ -18,19 +19,6 @@ constexpr const char *kPositive = "#1f77b4", *kNegative = "#d62728", *kPath = "#
 constexpr double kPanel = 300, kGap = 26, kMargin = 10, kHeader = 44;
 constexpr int kShadeGrid = 90;  // cells per side of the V shading
 
-std::string num(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.2f", v);
-  return buffer;
-}
-
-std::string escapeXml(const std::string& text) {
-  std::string out;
-  for (char ch : text)
-    out += ch == '&' ? "&amp;" : ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : std::string(1, ch);
-  return out;
-}
-
 // One square plot of the data rectangle [lo, hi] (y up) at page offset (x0, y0).
 struct Panel {
   Point2 lo, hi;
@@ -38,7 +26,7 @@ struct Panel {
   double scale() const { return kPanel / std::max(hi.x() - lo.x(), hi.y() - lo.y()); }
   double px(double x) const { return x0 + (x - lo.x()) * scale(); }
   double py(double y) const { return y0 + kPanel - (y - lo.y()) * scale(); }
-  std::string xy(const Point2& p) const { return num(px(p.x())) + "," + num(py(p.y())); }
+  std::string xy(const Point2& p) const { return svgNumber(px(p.x())) + "," + svgNumber(py(p.y())); }
 };
 
 void polyline(std::ostringstream& s, const Panel& panel, const std::vector<Point2>& points,
@@ -80,16 +68,16 @@ void path(std::ostringstream& s, const Panel& panel, const std::vector<Eigen::Ve
 
 // Drawing clipped to the panel: a nested <svg> whose viewBox is the panel's page rectangle.
 void openClip(std::ostringstream& s, const Panel& panel) {
-  s << "<svg x=\"" << num(panel.x0) << "\" y=\"" << num(panel.y0) << "\" width=\"" << kPanel
-    << "\" height=\"" << kPanel << "\" viewBox=\"" << num(panel.x0) << " " << num(panel.y0) << " "
+  s << "<svg x=\"" << svgNumber(panel.x0) << "\" y=\"" << svgNumber(panel.y0) << "\" width=\"" << kPanel
+    << "\" height=\"" << kPanel << "\" viewBox=\"" << svgNumber(panel.x0) << " " << svgNumber(panel.y0) << " "
     << kPanel << " " << kPanel << "\">\n";
 }
 
 void frame(std::ostringstream& s, const Panel& panel, const std::string& caption, bool chosen) {
-  s << "<rect x=\"" << num(panel.x0) << "\" y=\"" << num(panel.y0) << "\" width=\"" << kPanel
+  s << "<rect x=\"" << svgNumber(panel.x0) << "\" y=\"" << svgNumber(panel.y0) << "\" width=\"" << kPanel
     << "\" height=\"" << kPanel << "\" fill=\"none\" stroke=\"" << (chosen ? "red" : "black")
     << "\" stroke-width=\"" << (chosen ? 3 : 1) << "\"/>\n"
-    << "<text x=\"" << num(panel.x0) << "\" y=\"" << num(panel.y0 - 5) << "\" font-size=\"11\">"
+    << "<text x=\"" << svgNumber(panel.x0) << "\" y=\"" << svgNumber(panel.y0 - 5) << "\" font-size=\"11\">"
     << escapeXml(caption) << "</text>\n";
 }
 
@@ -111,10 +99,10 @@ void shading(std::ostringstream& s, const Panel& panel, const svm::BinaryModel& 
       }
       if (i < kShadeGrid && region == run_region) continue;
       if (run_region >= 0)
-        s << "<rect x=\"" << num(panel.px(panel.lo.x() + run_start * cell.x())) << "\" y=\""
-          << num(panel.py(panel.lo.y() + (j + 1) * cell.y())) << "\" width=\""
-          << num((i - run_start) * cell.x() * panel.scale()) << "\" height=\""
-          << num(cell.y() * panel.scale() + 0.5) << "\" fill=\"" << shades[run_region] << "\"/>\n";
+        s << "<rect x=\"" << svgNumber(panel.px(panel.lo.x() + run_start * cell.x())) << "\" y=\""
+          << svgNumber(panel.py(panel.lo.y() + (j + 1) * cell.y())) << "\" width=\""
+          << svgNumber((i - run_start) * cell.x() * panel.scale()) << "\" height=\""
+          << svgNumber(cell.y() * panel.scale() + 0.5) << "\" fill=\"" << shades[run_region] << "\"/>\n";
       run_start = i, run_region = region;
     }
   }
@@ -138,18 +126,18 @@ void samples(std::ostringstream& s, const Panel& panel, const planners::SvppTria
     const std::string colour = set.y[i] > 0 ? kPositive : kNegative;
     const double x = panel.px(p.x()), y = panel.py(p.y());
     if (set.kind[i] == SampleKind::kVirtual)
-      s << "<circle cx=\"" << num(x) << "\" cy=\"" << num(y)
+      s << "<circle cx=\"" << svgNumber(x) << "\" cy=\"" << svgNumber(y)
         << "\" r=\"2.2\" fill=\"none\" stroke=\"" << colour << "\"/>\n";
     else if (set.y[i] > 0)
-      s << "<rect x=\"" << num(x - 1.6) << "\" y=\"" << num(y - 1.6)
+      s << "<rect x=\"" << svgNumber(x - 1.6) << "\" y=\"" << svgNumber(y - 1.6)
         << "\" width=\"3.2\" height=\"3.2\" fill=\"" << colour << "\"/>\n";
     else
-      s << "<path d=\"M" << num(x - 1.8) << "," << num(y - 1.8)
+      s << "<path d=\"M" << svgNumber(x - 1.8) << "," << svgNumber(y - 1.8)
         << "l3.6,3.6m0,-3.6l-3.6,3.6\" stroke=\"" << colour << "\" stroke-width=\"1\"/>\n";
   }
   const Eigen::MatrixXd& sv = trial.model.supportVectors();
   for (Eigen::Index i = 0; i < sv.cols(); ++i)
-    s << "<rect x=\"" << num(panel.px(sv(0, i)) - 3.5) << "\" y=\"" << num(panel.py(sv(1, i)) - 3.5)
+    s << "<rect x=\"" << svgNumber(panel.px(sv(0, i)) - 3.5) << "\" y=\"" << svgNumber(panel.py(sv(1, i)) - 3.5)
       << "\" width=\"7\" height=\"7\" fill=\"none\" stroke=\"black\" stroke-width=\"0.7\"/>\n";
 }
 
@@ -157,15 +145,15 @@ std::string caption(int index, const planners::SvppTrial& trial) {
   std::ostringstream c;
   c << "pattern " << index + 1 << ": " << planners::followStatusName(trial.follow.status);
   if (trial.follow.reached())
-    c << ", length " << num(trial.follow.length) << (trial.valid ? "" : ", collides");
+    c << ", length " << svgNumber(trial.follow.length) << (trial.valid ? "" : ", collides");
   return c.str();
 }
 
 std::string document(double width, double height, const std::string& title,
                      const std::string& subtitle, const std::string& body) {
   std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\""
-    << num(height)
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << svgNumber(width) << "\" height=\""
+    << svgNumber(height)
     << "\" font-family=\"sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     << "<text x=\"" << kMargin << "\" y=\"18\" font-size=\"15\">" << escapeXml(title) << "</text>\n"
     << "<text x=\"" << kMargin << "\" y=\"33\" font-size=\"10\">" << escapeXml(subtitle)
@@ -221,7 +209,7 @@ bool writeSvppSvg(const std::string& file, const std::string& title,
     obstacles(body, panel, trace, trial.pattern, a, b);
     const Eigen::MatrixXd& sv = trial.model.supportVectors();
     for (Eigen::Index i = 0; i < sv.cols(); ++i)
-      body << "<circle cx=\"" << num(panel.px(sv(a, i))) << "\" cy=\"" << num(panel.py(sv(b, i)))
+      body << "<circle cx=\"" << svgNumber(panel.px(sv(a, i))) << "\" cy=\"" << svgNumber(panel.py(sv(b, i)))
            << "\" r=\"1.8\" fill=\"" << (trial.model.coefficients()[i] > 0 ? kPositive : kNegative)
            << "\"/>\n";
     path(body, panel, trial.follow.path, trial.valid, a, b);

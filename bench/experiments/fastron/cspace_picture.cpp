@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/output_text.hpp"
 #include "cspace/collision_checker.hpp"
 #include "robots/planar_arm.hpp"
 
@@ -16,17 +17,11 @@ constexpr double kPi = std::numbers::pi;
 constexpr int kGrid = 120;
 constexpr double kPanel = 300;  // px per panel side
 
-std::string num(double x) {
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(1) << x;
-  return o.str();
-}
-
 // One C-space panel: cells coloured by `colliding`, support points (joints 1, 2) as dots.
 void panel(std::ostringstream& svg, double x0, const std::string& title, const std::vector<bool>& colliding,
            const std::vector<Eigen::VectorXd>& support) {
   const double cell = kPanel / kGrid;
-  svg << "<g transform=\"translate(" << num(x0) << ",40)\"><text x=\"0\" y=\"-8\" font-size=\"14\">" << title << "</text>\n";
+  svg << "<g transform=\"translate(" << svgNumber(x0) << ",40)\"><text x=\"0\" y=\"-8\" font-size=\"14\">" << title << "</text>\n";
   svg << "<rect width=\"" << kPanel << "\" height=\"" << kPanel << "\" fill=\"#ffffff\" stroke=\"#000\"/>\n";
   // One rectangle per run of colliding cells in a grid column.
   for (int i = 0; i < kGrid; ++i)
@@ -37,13 +32,13 @@ void panel(std::ostringstream& svg, double x0, const std::string& title, const s
       }
       int end = j;
       while (end < kGrid && colliding[i * kGrid + end]) ++end;
-      svg << "<rect x=\"" << num(i * cell) << "\" y=\"" << num(kPanel - end * cell) << "\" width=\"" << num(cell + 0.2)
-          << "\" height=\"" << num((end - j) * cell + 0.2) << "\" fill=\"#d9534f\"/>\n";
+      svg << "<rect x=\"" << svgNumber(i * cell) << "\" y=\"" << svgNumber(kPanel - end * cell) << "\" width=\"" << svgNumber(cell + 0.2)
+          << "\" height=\"" << svgNumber((end - j) * cell + 0.2) << "\" fill=\"#d9534f\"/>\n";
       j = end;
     }
   for (const auto& q : support) {
     if (std::abs(q[2]) > 0.3) continue;  // near the slice q3 = 0
-    svg << "<circle cx=\"" << num((q[0] + kPi) / (2 * kPi) * kPanel) << "\" cy=\"" << num(kPanel - (q[1] + kPi) / (2 * kPi) * kPanel)
+    svg << "<circle cx=\"" << svgNumber((q[0] + kPi) / (2 * kPi) * kPanel) << "\" cy=\"" << svgNumber(kPanel - (q[1] + kPi) / (2 * kPi) * kPanel)
         << "\" r=\"2\" fill=\"#1f4e9c\"/>\n";
   }
   svg << "<text x=\"0\" y=\"" << kPanel + 16 << "\" font-size=\"11\">q1 in [-pi, pi] (right), q2 in [-pi, pi] (up), q3 = 0</text></g>\n";
@@ -95,17 +90,17 @@ PictureResult drawCspacePicture(const std::string& dir, std::uint64_t seed, cons
 
   std::ostringstream svg;
   const double width = 4 * (kPanel + 30) + 20;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(kPanel + 80)
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << svgNumber(width) << "\" height=\"" << svgNumber(kPanel + 80)
       << "\" font-family=\"sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   // (a) workspace: the arm at q = 0 and the cubes, 1 m = kPanel / 2 px, base at the panel centre.
   const double s = kPanel / 2.2;
-  auto px = [&](double x) { return num(10 + kPanel / 2 + s * x); };
-  auto py = [&](double y) { return num(40 + kPanel / 2 - s * y); };
+  auto px = [&](double x) { return svgNumber(10 + kPanel / 2 + s * x); };
+  auto py = [&](double y) { return svgNumber(40 + kPanel / 2 - s * y); };
   svg << "<text x=\"10\" y=\"32\" font-size=\"14\">(a) workspace, arm at q = 0</text>\n<rect x=\"10\" y=\"40\" width=\"" << kPanel
       << "\" height=\"" << kPanel << "\" fill=\"none\" stroke=\"#000\"/>\n";
   for (const auto& c : centres)
-    svg << "<rect x=\"" << px(c.x() - 0.075) << "\" y=\"" << py(c.y() + 0.075) << "\" width=\"" << num(0.15 * s)
-        << "\" height=\"" << num(0.15 * s) << "\" fill=\"#d9534f\"/>\n";
+    svg << "<rect x=\"" << px(c.x() - 0.075) << "\" y=\"" << py(c.y() + 0.075) << "\" width=\"" << svgNumber(0.15 * s)
+        << "\" height=\"" << svgNumber(0.15 * s) << "\" fill=\"#d9534f\"/>\n";
   Eigen::Matrix3Xd points;
   arm->controlPoints(Eigen::Vector3d::Zero(), points);
   std::string prev_x = px(0), prev_y = py(0);
@@ -116,10 +111,10 @@ PictureResult drawCspacePicture(const std::string& dir, std::uint64_t seed, cons
   }
   panel(svg, 10 + (kPanel + 30), "(b) ground truth (FCL)", truth, {});
   panel(svg, 10 + 2 * (kPanel + 30),
-        "(c) Fastron RBF: " + std::to_string(r.rbf_support) + " support points, " + num(100 * r.rbf_accuracy) + "%",
+        "(c) Fastron RBF: " + std::to_string(r.rbf_support) + " support points, " + svgNumber(100 * r.rbf_accuracy) + "%",
         by_rbf, rbf_model.supportConfigurations());
   panel(svg, 10 + 3 * (kPanel + 30),
-        "(d) Fastron FK: " + std::to_string(r.fk_support) + " support points, " + num(100 * r.fk_accuracy) + "%",
+        "(d) Fastron FK: " + std::to_string(r.fk_support) + " support points, " + svgNumber(100 * r.fk_accuracy) + "%",
         by_fk, fk_model.supportConfigurations());
   svg << "</svg>\n";
   r.file = dir + "/fastron_fig1_cspace.svg";
