@@ -173,10 +173,14 @@ class OmplPlanner final : public Planner {
     si->setMotionValidator(std::make_shared<SegmentValidator>(si, context_));
     si->setup();  // registers the space's default projection, so ours comes after it
     // OMPL 1.5's identity projection (its default for dim <= 2) resizes an Eigen::Ref and aborts in
-    // Debian's build (projection planners such as SBL); a linear identity projection does the same work.
-    if (dim <= 2)
-      space->registerDefaultProjection(std::make_shared<ob::RealVectorLinearProjectionEvaluator>(
-          space, ob::ProjectionMatrix::Matrix(Eigen::MatrixXd::Identity(dim, dim))));
+    // Debian's build (projection planners such as SBL); projecting on every coordinate does the same
+    // work. (Not a linear projection built here: its Eigen matrix would be freed inside libompl,
+    // whose Eigen may align differently from ours, e.g. with SVMP_NATIVE.)
+    if (dim <= 2) {
+      std::vector<unsigned int> all(dim);
+      for (int i = 0; i < dim; ++i) all[i] = i;
+      space->registerDefaultProjection(std::make_shared<ob::RealVectorOrthogonalProjectionEvaluator>(space, all));
+    }
     auto pdef = std::make_shared<ob::ProblemDefinition>(si);
     ob::ScopedState<> start(space), goal(space);
     for (int i = 0; i < dim; ++i) {
