@@ -99,19 +99,8 @@ int FastronChecker::check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
 }
 
 void FastronChecker::checkBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, std::vector<int>& out) const {
-  const int B = static_cast<int>(qs.cols());
-  queries_.fetch_add(B, std::memory_order_relaxed);
-  out.resize(B);
-  thread_local std::vector<float> f;
-  f.resize(dim_);
-  for (int b = 0; b < B; ++b) {
-    if (!robot_->withinLimits(qs.col(b))) {
-      out[b] = kJointLimitHit;
-      continue;
-    }
-    features(qs.col(b), f.data());
-    out[b] = model_.value(f.data()) > 0 ? kPredictedHit : kFree;
-  }
+  out.resize(qs.cols());
+  for (Eigen::Index b = 0; b < qs.cols(); ++b) out[b] = check(qs.col(b));
 }
 
 bool FastronChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const {

@@ -80,10 +80,9 @@ class FastronChecker final : public ValidityChecker {
 
   // The model's value f(q) (> 0: predicted in collision); not counted.
   double value(const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  // check() for each column of qs (out[i]: kFree, kPredictedHit or kJointLimitHit), one feature buffer
-  // for all. One query after another: evaluating several at once (configurations across the vector
-  // lanes) measured slower, the support set stays in L1 either way (docs/fastron.md). Counts qs.cols()
-  // checks.
+  // check() for each column of qs (out[i]: kFree, kPredictedHit or kJointLimitHit). One query after
+  // another: evaluating several at once (configurations across the vector lanes) measured slower, the
+  // support set stays in L1 either way (docs/fastron.md). Counts qs.cols() checks.
   void checkBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, std::vector<int>& out) const;
 
   const svm::FastronModel& model() const { return model_; }
