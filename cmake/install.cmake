@@ -8,7 +8,7 @@ include(CMakePackageConfigHelpers)
 
 set(svmp_exported svmp_settings svmp_robots svmp_svm svmp_cspace svmp_planners_objects svmp_planners)
 if(SVMP_WITH_OMPL)
-  list(APPEND svmp_exported ompl_bridge_deps)
+  list(APPEND svmp_exported ompl_bridge_deps svmp_ompl)
 endif()
 foreach(target ${svmp_exported})
   string(REGEX REPLACE "^svmp_" "" name ${target})

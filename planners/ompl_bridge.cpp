@@ -13,14 +13,12 @@
 // wall time and checks for solutions in a second thread, so its runs are not exactly repeatable.
 // The planners register themselves as ompl-prm, ompl-lazyprm, ompl-rrtconnect, ompl-rrt, ompl-sbl,
 // ompl-rrtstar, ompl-fmt and ompl-informedrrtstar (planners/planner_registry.hpp); nothing else is
-// exported.
+// exported. The state space, checker and validator are planners/ompl/state_bridge.hpp's.
 
 #include "planners/planner_registry.hpp"
+#include "planners/ompl/state_bridge.hpp"
 
-#include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
-#include <ompl/base/StateValidityChecker.h>
-#include <ompl/base/spaces/RealVectorStateProjections.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/planners/prm/LazyPRM.h>
@@ -43,55 +41,6 @@ namespace {
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
-
-Eigen::VectorXd toConfiguration(const ob::State* s, const Eigen::VectorXd& scale) {
-  const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
-  Eigen::VectorXd q(scale.size());
-  for (int i = 0; i < q.size(); ++i) q[i] = v->values[i] / scale[i];
-  return q;
-}
-
-class StateChecker final : public ob::StateValidityChecker {
- public:
-  StateChecker(const ob::SpaceInformationPtr& si, const PlanningContext& c)
-      : ob::StateValidityChecker(si), context_(c) {}
-  bool isValid(const ob::State* s) const override {
-    return context_.checker.isValid(toConfiguration(s, context_.space.metricScale()));
-  }
-
- private:
-  const PlanningContext& context_;
-};
-
-class SegmentValidator final : public ob::MotionValidator {
- public:
-  SegmentValidator(const ob::SpaceInformationPtr& si, const PlanningContext& c)
-      : ob::MotionValidator(si), context_(c) {}
-  // OMPL's contract: s1 is valid; s2 and the interior are checked.
-  bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
-    const Eigen::VectorXd& scale = context_.space.metricScale();
-    const bool ok = context_.validator.isValidIncludingEnd(toConfiguration(s1, scale),
-                                                           toConfiguration(s2, scale));
-    ok ? ++valid_ : ++invalid_;
-    return ok;
-  }
-  bool checkMotion(const ob::State* s1, const ob::State* s2,
-                   std::pair<ob::State*, double>& last_valid) const override {
-    const Eigen::VectorXd& scale = context_.space.metricScale();
-    double t = 0;
-    if (context_.validator.checkMotion(toConfiguration(s1, scale), toConfiguration(s2, scale), t)) {
-      ++valid_;
-      return true;
-    }
-    last_valid.second = t;
-    if (last_valid.first) si_->getStateSpace()->interpolate(s1, s2, t, last_valid.first);
-    ++invalid_;
-    return false;
-  }
-
- private:
-  const PlanningContext& context_;
-};
 
 // Uniform sampling from our seeded generator, so OMPL's samples follow the run's seed.
 class SeededSampler final : public ob::StateSampler {
@@ -156,37 +105,16 @@ class OmplPlanner final : public Planner {
   void answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
               PlanResult& result) override {
     const Eigen::VectorXd& scale = context_.space.metricScale();
-    const int dim = context_.space.dim();
-    auto space = std::make_shared<ob::RealVectorStateSpace>(dim);
-    ob::RealVectorBounds bounds(dim);
-    for (int i = 0; i < dim; ++i) {
-      bounds.setLow(i, context_.space.lower()[i] * scale[i]);
-      bounds.setHigh(i, context_.space.upper()[i] * scale[i]);
-    }
-    space->setBounds(bounds);
     std::uint64_t sampler_seed = seed;
-    space->setStateSamplerAllocator([sampler_seed](const ob::StateSpace* s) mutable {
-      return std::make_shared<SeededSampler>(s, sampler_seed++ * 0x9E3779B97F4A7C15ULL + 1);
-    });
-    auto si = std::make_shared<ob::SpaceInformation>(space);
-    si->setStateValidityChecker(std::make_shared<StateChecker>(si, context_));
-    si->setMotionValidator(std::make_shared<SegmentValidator>(si, context_));
-    si->setup();  // registers the space's default projection, so ours comes after it
-    // OMPL 1.5's identity projection (its default for dim <= 2) resizes an Eigen::Ref and aborts in
-    // Debian's build (projection planners such as SBL); projecting on every coordinate does the same
-    // work. (Not a linear projection built here: its Eigen matrix would be freed inside libompl,
-    // whose Eigen may align differently from ours, e.g. with SVMP_NATIVE.)
-    if (dim <= 2) {
-      std::vector<unsigned int> all(dim);
-      for (int i = 0; i < dim; ++i) all[i] = i;
-      space->registerDefaultProjection(std::make_shared<ob::RealVectorOrthogonalProjectionEvaluator>(space, all));
-    }
+    const ob::SpaceInformationPtr si =
+        ompl_planners::makeSpaceInformation(context_, nullptr, [sampler_seed](const ob::StateSpace* s) mutable {
+          return std::make_shared<SeededSampler>(s, sampler_seed++ * 0x9E3779B97F4A7C15ULL + 1);
+        });
+    const ob::StateSpacePtr& space = si->getStateSpace();
     auto pdef = std::make_shared<ob::ProblemDefinition>(si);
     ob::ScopedState<> start(space), goal(space);
-    for (int i = 0; i < dim; ++i) {
-      start[i] = query.start[i] * scale[i];
-      goal[i] = query.goal[i] * scale[i];
-    }
+    ompl_planners::toState(query.start, scale, start.get());
+    ompl_planners::toState(query.goal, scale, goal.get());
     pdef->setStartAndGoalStates(start, goal);
     const bool optimizing = name_ == "ompl-rrtstar" || name_ == "ompl-fmt" || name_ == "ompl-informedrrtstar";
     if (optimizing && options_.first_solution) {
@@ -208,7 +136,7 @@ class OmplPlanner final : public Planner {
     if (status == ob::PlannerStatus::EXACT_SOLUTION) {
       auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
       for (size_t i = 0; i < path->getStateCount(); ++i)
-        result.path.push_back(toConfiguration(path->getState(i), scale));
+        result.path.push_back(ompl_planners::toConfiguration(path->getState(i), scale));
       result.status = PlanStatus::kSolved;
     } else {
       result.status = status == ob::PlannerStatus::TIMEOUT || status == ob::PlannerStatus::APPROXIMATE_SOLUTION

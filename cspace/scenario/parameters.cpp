@@ -1,10 +1,16 @@
 #include "cspace/scenario/parameters.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 
 namespace svmp::cspace {
+
+std::string parameterText(double v) {
+  char buf[64];
+  return std::string(buf, std::to_chars(buf, buf + sizeof(buf), v).ptr);
+}
 
 std::string ParameterSet::field(const std::string& key) const {
   const auto it = sources_.find(key);
@@ -13,6 +19,7 @@ std::string ParameterSet::field(const std::string& key) const {
 
 double ParameterSet::getDouble(const std::string& key, double fallback, double min, double max) const {
   used_.insert(key);
+  declared_[key] = {ParameterDeclaration::Kind::kDouble, parameterText(fallback), parameterText(min) + ":" + parameterText(max)};
   auto it = values_.find(key);
   if (it == values_.end()) return fallback;
   char* end = nullptr;
@@ -29,6 +36,8 @@ double ParameterSet::getDouble(const std::string& key, double fallback, double m
 
 long ParameterSet::getInt(const std::string& key, long fallback, long min, long max) const {
   used_.insert(key);
+  declared_[key] = {ParameterDeclaration::Kind::kInt, std::to_string(fallback),
+                    std::to_string(min) + ":" + std::to_string(max)};
   auto it = values_.find(key);
   if (it == values_.end()) return fallback;
   char* end = nullptr;
@@ -43,6 +52,7 @@ long ParameterSet::getInt(const std::string& key, long fallback, long min, long 
 
 bool ParameterSet::getBool(const std::string& key, bool fallback) const {
   used_.insert(key);
+  declared_[key] = {ParameterDeclaration::Kind::kBool, fallback ? "1" : "0", "0,1"};
   auto it = values_.find(key);
   if (it == values_.end()) return fallback;
   if (it->second == "true" || it->second == "1") return true;
@@ -53,6 +63,9 @@ bool ParameterSet::getBool(const std::string& key, bool fallback) const {
 std::string ParameterSet::getString(const std::string& key, const std::string& fallback,
                                     const std::set<std::string>& allowed) const {
   used_.insert(key);
+  std::string range;
+  for (const auto& a : allowed) range += (range.empty() ? "" : ",") + a;
+  declared_[key] = {ParameterDeclaration::Kind::kString, fallback, range};
   auto it = values_.find(key);
   if (it == values_.end()) return fallback;
   if (!allowed.empty() && !allowed.count(it->second)) {

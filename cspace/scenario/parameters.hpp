@@ -16,6 +16,19 @@ class ScenarioError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What a getter was asked for: the value's kind, the default it was given and its bounds or allowed
+// values, as text. planners/ompl/ declares a planner's OMPL parameters (ompl::base::ParamSet) from these.
+struct ParameterDeclaration {
+  enum class Kind { kDouble, kInt, kBool, kString };
+  Kind kind = Kind::kString;
+  std::string fallback;
+  std::string range;  // OMPL's range-suggestion convention: "min:max", "0,1" or "a,b,c"
+};
+
+// The shortest text that reads back as the same double (how declarations and OMPL's ParamSet write
+// numbers).
+std::string parameterText(double v);
+
 class ParameterSet {
  public:
   ParameterSet() = default;
@@ -39,6 +52,8 @@ class ParameterSet {
   // Throws ScenarioError naming keys that were set but never read.
   void requireAllUsed() const;
   const std::map<std::string, std::string>& values() const { return values_; }
+  // Every key a getter read, with its kind, default and bounds (in the order of the keys).
+  const std::map<std::string, ParameterDeclaration>& declarations() const { return declared_; }
 
  private:
   std::string field(const std::string& key) const;
@@ -46,6 +61,7 @@ class ParameterSet {
   std::map<std::string, std::string> values_;
   std::map<std::string, std::string> sources_;  // per key, when set from elsewhere than source_
   mutable std::set<std::string> used_;
+  mutable std::map<std::string, ParameterDeclaration> declared_;
 };
 
 }  // namespace svmp::cspace

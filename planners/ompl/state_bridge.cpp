@@ -1,0 +1,104 @@
+#include "planners/ompl/state_bridge.hpp"
+
+#include <ompl/base/spaces/RealVectorStateProjections.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+
+#include <vector>
+
+namespace svmp::ompl_planners {
+
+ob::PlannerStatus omplStatus(planners::PlanStatus status) {
+  using planners::PlanStatus;
+  switch (status) {
+    case PlanStatus::kSolved: return ob::PlannerStatus::EXACT_SOLUTION;
+    case PlanStatus::kLocalMinimum: return ob::PlannerStatus::APPROXIMATE_SOLUTION;
+    case PlanStatus::kTimeout: return ob::PlannerStatus::TIMEOUT;
+    case PlanStatus::kInvalidStart: return ob::PlannerStatus::INVALID_START;
+    case PlanStatus::kInvalidGoal: return ob::PlannerStatus::INVALID_GOAL;
+    case PlanStatus::kFailed:
+    case PlanStatus::kInvalidInput: break;
+  }
+  return ob::PlannerStatus::ABORT;
+}
+
+Eigen::VectorXd toConfiguration(const ob::State* state, const Eigen::VectorXd& scale) {
+  const auto* v = state->as<ob::RealVectorStateSpace::StateType>();
+  Eigen::VectorXd q(scale.size());
+  for (int i = 0; i < q.size(); ++i) q[i] = v->values[i] / scale[i];
+  return q;
+}
+
+void toState(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::VectorXd& scale, ob::State* state) {
+  auto* v = state->as<ob::RealVectorStateSpace::StateType>();
+  for (int i = 0; i < q.size(); ++i) v->values[i] = q[i] * scale[i];
+}
+
+ContextValidityChecker::ContextValidityChecker(const ob::SpaceInformationPtr& si,
+                                               const planners::PlanningContext& context,
+                                               std::shared_ptr<const void> owner)
+    : ob::StateValidityChecker(si), context_(context), owner_(std::move(owner)) {
+  specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::EXACT;
+}
+
+bool ContextValidityChecker::isValid(const ob::State* state) const {
+  return context_.checker.isValid(toConfiguration(state, context_.space.metricScale()));
+}
+
+double ContextValidityChecker::clearance(const ob::State* state) const {
+  return context_.checker.clearance(toConfiguration(state, context_.space.metricScale()));
+}
+
+ContextMotionValidator::ContextMotionValidator(const ob::SpaceInformationPtr& si,
+                                               const planners::PlanningContext& context,
+                                               std::shared_ptr<const void> owner)
+    : ob::MotionValidator(si), context_(context), owner_(std::move(owner)) {}
+
+bool ContextMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
+  const Eigen::VectorXd& scale = context_.space.metricScale();
+  const bool ok = context_.validator.isValidIncludingEnd(toConfiguration(s1, scale), toConfiguration(s2, scale));
+  ok ? ++valid_ : ++invalid_;
+  return ok;
+}
+
+bool ContextMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
+                                         std::pair<ob::State*, double>& last_valid) const {
+  const Eigen::VectorXd& scale = context_.space.metricScale();
+  double t = 0;
+  if (context_.validator.checkMotion(toConfiguration(s1, scale), toConfiguration(s2, scale), t)) {
+    ++valid_;
+    return true;
+  }
+  last_valid.second = t;
+  if (last_valid.first) si_->getStateSpace()->interpolate(s1, s2, t, last_valid.first);
+  ++invalid_;
+  return false;
+}
+
+ob::SpaceInformationPtr makeSpaceInformation(const planners::PlanningContext& context,
+                                             std::shared_ptr<const void> owner,
+                                             const ob::StateSamplerAllocator& sampler) {
+  const Eigen::VectorXd& scale = context.space.metricScale();
+  const int dim = context.space.dim();
+  auto space = std::make_shared<ob::RealVectorStateSpace>(dim);
+  ob::RealVectorBounds bounds(dim);
+  for (int i = 0; i < dim; ++i) {
+    bounds.setLow(i, context.space.lower()[i] * scale[i]);
+    bounds.setHigh(i, context.space.upper()[i] * scale[i]);
+  }
+  space->setBounds(bounds);
+  if (sampler) space->setStateSamplerAllocator(sampler);
+  auto si = std::make_shared<ob::SpaceInformation>(space);
+  si->setStateValidityChecker(std::make_shared<ContextValidityChecker>(si, context, owner));
+  si->setMotionValidator(std::make_shared<ContextMotionValidator>(si, context, owner));
+  si->setup();  // registers the space's default projection, so ours comes after it
+  // Not a linear projection built here: its Eigen matrix would be freed inside libompl, whose Eigen
+  // may align differently from ours (SVMP_NATIVE).
+  if (dim <= 2) {
+    std::vector<unsigned int> all(dim);
+    for (int i = 0; i < dim; ++i) all[i] = i;
+    space->registerDefaultProjection(std::make_shared<ob::RealVectorOrthogonalProjectionEvaluator>(space, all));
+  }
+  return si;
+}
+
+}  // namespace svmp::ompl_planners

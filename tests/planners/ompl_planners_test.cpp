@@ -1,0 +1,217 @@
+// Our planners as OMPL planners (planners/ompl/svm_planners.hpp): each solves through SimpleSetup on
+// our checker with a path an independent checker re-checks densely; an expired termination condition
+// stops them at once; getPlannerData is the roadmap; the ParamSet lists the options' fields and
+// setting one changes the options (bad values refused); a user's StateValidityChecker is used by the
+// PRM and refused, with a reason, by SVMP.
+#include <gtest/gtest.h>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/SimpleSetup.h>
+
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+#include "planners/ompl/scenario_setup.hpp"
+#include "planners/ompl/svm_planners.hpp"
+#include "planners/path_simplifier.hpp"
+#include "planners/roadmap.hpp"
+#include "test_world.hpp"
+
+namespace svmp::ompl_planners {
+namespace {
+
+namespace og = ::ompl::geometric;
+
+std::string scenarioText(const std::string& name) {
+  std::ifstream in(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + name);
+  EXPECT_TRUE(in.good()) << name;
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Our planner `name` on `scenario` through SimpleSetup, with the scenario's parameters.
+struct OmplRun {
+  OmplRun(const std::string& scenario, const std::string& name)
+      : recheck(planners::test::makeWorld(scenarioText(scenario))),
+        world(ScenarioWorld::make(recheck->scenario)),
+        setup(world->simpleSetup()) {
+    planner = makeSvmOmplPlanner(name, setup->getSpaceInformation(), recheck->scenario.paramsFor(name));
+    setup->setPlanner(planner);
+    setup->setup();
+  }
+  SvmOmplPlannerBase& ours() const { return *planner->as<SvmOmplPlannerBase>(); }
+  std::vector<Eigen::VectorXd> path() const {
+    std::vector<Eigen::VectorXd> q;
+    for (const ob::State* s : setup->getSolutionPath().getStates())
+      q.push_back(toConfiguration(s, world->context().space.metricScale()));
+    return q;
+  }
+  std::unique_ptr<planners::test::World> recheck;  // the scenario and an independent FCL checker
+  std::shared_ptr<const ScenarioWorld> world;
+  std::shared_ptr<og::SimpleSetup> setup;
+  ob::PlannerPtr planner;
+};
+
+struct Case {
+  const char* planner;
+  const char* scenario;
+};
+const Case kCases[] = {{"svmp", "thesis_fig2_6.yaml"}, {"prm", "thesis_fig2_6.yaml"},
+                       {"local", "thesis_fig2_6.yaml"}, {"svpp", "svpp_2d_01.yaml"}};
+
+TEST(OmplPlanners, EachSolvesThroughSimpleSetupWithACertifiedPath) {
+  for (const Case& c : kCases) {
+    OmplRun run(c.scenario, c.planner);
+    run.ours().setSeed(1);
+    const ob::PlannerStatus status = run.setup->solve(30.0);
+    ASSERT_EQ(status, ob::PlannerStatus::EXACT_SOLUTION) << c.planner << ": " << run.ours().lastResult().message;
+    EXPECT_TRUE(run.setup->haveExactSolutionPath()) << c.planner;
+    EXPECT_FALSE(run.setup->getProblemDefinition()->hasApproximateSolution()) << c.planner;
+    EXPECT_TRUE(run.ours().usesOwnChecker());
+    EXPECT_TRUE(run.ours().lastResult().certified) << c.planner;
+    EXPECT_GT(run.ours().lastResult().collision_checks, 0u) << c.planner;
+    EXPECT_TRUE(planners::test::pathIsValid(*run.recheck, run.path())) << c.planner;
+    // OMPL's own check of the path, on our checker and validator.
+    EXPECT_TRUE(run.setup->getSolutionPath().check()) << c.planner;
+    EXPECT_NEAR(run.setup->getSolutionPath().length(),
+                planners::pathLength(run.path(), run.world->context().space), 1e-9) << c.planner;
+  }
+}
+
+TEST(OmplPlanners, AnExpiredConditionStopsThemAtOnce) {
+  for (const Case& c : kCases) {
+    OmplRun run(c.scenario, c.planner);
+    const auto t0 = std::chrono::steady_clock::now();
+    const ob::PlannerStatus status = run.planner->solve(ob::PlannerTerminationCondition([] { return true; }));
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(status, ob::PlannerStatus::TIMEOUT) << c.planner << ": " << status.asString();
+    EXPECT_LT(ms, 200.0) << c.planner;
+    EXPECT_FALSE(run.setup->haveSolutionPath()) << c.planner;
+  }
+}
+
+TEST(OmplPlanners, PlannerDataIsTheRoadmapOrThePath) {
+  for (const Case& c : kCases) {
+    OmplRun run(c.scenario, c.planner);
+    run.ours().setSeed(1);
+    ASSERT_EQ(run.setup->solve(30.0), ob::PlannerStatus::EXACT_SOLUTION) << c.planner;
+    ob::PlannerData data(run.setup->getSpaceInformation());
+    run.planner->getPlannerData(data);
+    const planners::Roadmap* roadmap = run.ours().planner()->view().roadmap;
+    if (std::string(c.planner) == "svmp" || std::string(c.planner) == "prm") {
+      ASSERT_NE(roadmap, nullptr) << c.planner;
+      EXPECT_EQ(data.numVertices(), static_cast<unsigned>(roadmap->numNodes())) << c.planner;
+      EXPECT_EQ(data.numEdges(), static_cast<unsigned>(roadmap->numEdges())) << c.planner;
+      EXPECT_GT(roadmap->numNodes(), 10) << c.planner;
+    } else {
+      EXPECT_EQ(data.numVertices(), run.setup->getSolutionPath().getStateCount()) << c.planner;
+      EXPECT_EQ(data.numStartVertices(), 1u);
+      EXPECT_EQ(data.numGoalVertices(), 1u);
+    }
+  }
+}
+
+TEST(OmplPlanners, ParamSetListsTheOptionsAndSettingOneChangesThem) {
+  OmplRun run("thesis_fig2_6.yaml", "svmp");
+  auto& svmp = *run.planner->as<SvmpOmplPlanner>();
+  std::map<std::string, std::string> listed;
+  svmp.params().getParams(listed);
+  for (const char* key : {"sigma", "C", "step", "samples_per_tree", "k", "repair_rounds", "kernel", "classes",
+                          "truncated", "centre_in_passage"})
+    EXPECT_TRUE(listed.count(key)) << key;
+  EXPECT_EQ(listed.size(), svmp.parameters().declarations().size());
+  EXPECT_EQ(svmp.params()["kernel"].getRangeSuggestion(), "fk,rbf");
+
+  EXPECT_TRUE(svmp.params().setParam("sigma", "0.25"));
+  EXPECT_EQ(svmp.options().sigma, 0.25);
+  EXPECT_EQ(svmp.params()["sigma"].getValue(), "0.25");
+  EXPECT_TRUE(svmp.params().setParam("samples_per_tree", "77"));
+  EXPECT_EQ(svmp.options().samples_per_tree, 77);
+  EXPECT_TRUE(svmp.params().setParam("truncated", "0"));
+  EXPECT_FALSE(svmp.options().truncated);
+  // Out of bounds or not in the allowed set: refused, the options unchanged.
+  EXPECT_FALSE(svmp.params().setParam("sigma", "-1"));
+  EXPECT_EQ(svmp.options().sigma, 0.25);
+  EXPECT_FALSE(svmp.params().setParam("kernel", "polynomial"));
+  EXPECT_EQ(svmp.options().kernel, "rbf");
+
+  // The new options reach the planner: a PRM of 60 samples has at most 60 milestones.
+  OmplRun prm("thesis_fig2_6.yaml", "prm");
+  ASSERT_TRUE(prm.planner->params().setParam("samples", "60"));
+  EXPECT_EQ(prm.planner->as<PrmOmplPlanner>()->options().samples, 60);
+  prm.planner->solve(ob::timedPlannerTerminationCondition(10.0));
+  EXPECT_LE(prm.ours().lastResult().milestones, 60u);
+  EXPECT_GT(prm.ours().lastResult().milestones, 0u);
+}
+
+TEST(OmplPlanners, ABadParameterInTheConstructorThrows) {
+  auto world = ScenarioWorld::make(planners::test::makeWorld(scenarioText("thesis_fig2_6.yaml"))->scenario);
+  EXPECT_THROW(SvmpOmplPlanner(world->spaceInformation(), cspace::ParameterSet("t", "", {{"sigma", "0"}})),
+               cspace::ScenarioError);
+  EXPECT_THROW(PrmOmplPlanner(world->spaceInformation(), cspace::ParameterSet("t", "", {{"sample", "9"}})),
+               cspace::ScenarioError);
+}
+
+// A user's checker: the unit square without a disc of radius 0.25 at its centre, counting its calls.
+class DiscChecker final : public ob::StateValidityChecker {
+ public:
+  using ob::StateValidityChecker::StateValidityChecker;
+  bool isValid(const ob::State* s) const override {
+    ++calls;
+    const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
+    return std::hypot(v->values[0] - 0.5, v->values[1] - 0.5) > 0.25;
+  }
+  mutable std::atomic<long> calls{0};
+};
+
+std::shared_ptr<og::SimpleSetup> discSetup(std::shared_ptr<DiscChecker>& checker) {
+  auto space = std::make_shared<ob::RealVectorStateSpace>(2);
+  space->setBounds(0.0, 1.0);
+  auto setup = std::make_shared<og::SimpleSetup>(space);
+  checker = std::make_shared<DiscChecker>(setup->getSpaceInformation());
+  setup->setStateValidityChecker(checker);
+  setup->getSpaceInformation()->setStateValidityCheckingResolution(0.002);
+  ob::ScopedState<> start(space), goal(space);
+  start[0] = start[1] = 0.2;
+  goal[0] = goal[1] = 0.8;
+  setup->setStartAndGoalStates(start, goal);
+  return setup;
+}
+
+TEST(OmplPlanners, AUsersCheckerIsUsedByThePrm) {
+  std::shared_ptr<DiscChecker> checker;
+  auto setup = discSetup(checker);
+  auto prm = std::make_shared<PrmOmplPlanner>(setup->getSpaceInformation());
+  prm->setSeed(3);
+  setup->setPlanner(prm);
+  ASSERT_EQ(setup->solve(10.0), ob::PlannerStatus::EXACT_SOLUTION) << prm->lastResult().message;
+  EXPECT_FALSE(prm->usesOwnChecker());
+  // Every configuration our PRM tested went to the user's checker (its motion validator asks more).
+  EXPECT_GT(prm->lastResult().collision_checks, 500u);
+  EXPECT_GE(checker->calls.load(), static_cast<long>(prm->lastResult().collision_checks));
+  EXPECT_FALSE(prm->lastResult().certified);  // no certifier: the SpaceInformation's guarantee only
+  og::PathGeometric path = setup->getSolutionPath();
+  path.interpolate(2000);
+  for (const ob::State* s : path.getStates()) {
+    const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
+    EXPECT_GT(std::hypot(v->values[0] - 0.5, v->values[1] - 0.5), 0.25);
+  }
+}
+
+TEST(OmplPlanners, SvmpRefusesAUsersCheckerAndSaysWhy) {
+  std::shared_ptr<DiscChecker> checker;
+  auto setup = discSetup(checker);
+  auto svmp = std::make_shared<SvmpOmplPlanner>(setup->getSpaceInformation());
+  setup->setPlanner(svmp);
+  EXPECT_EQ(setup->solve(1.0), ob::PlannerStatus::ABORT);
+  EXPECT_NE(svmp->lastResult().message.find("which obstacle a configuration hits"), std::string::npos)
+      << svmp->lastResult().message;
+  EXPECT_EQ(checker->calls.load(), 0);
+}
+
+}  // namespace
+}  // namespace svmp::ompl_planners
