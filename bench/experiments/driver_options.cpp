@@ -32,7 +32,7 @@ const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
          "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify [svpp]]\n"
          "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--checker NAME] [--queries N]\n"
-         "                 [--check]\n"
+         "                 [--ompl-log FILE] [--check]\n"
          "  --planners  comma-separated: svmp, prm, local, svpp, ompl-prm, ompl-lazyprm, ompl-rrtconnect,\n"
          "              ompl-rrt, ompl-sbl, ompl-rrtstar, ompl-fmt, ompl-informedrrtstar\n"
          "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
@@ -45,6 +45,8 @@ const char* driverUsage() {
          "              planners build once per run and answer all of them\n"
          "  --checker   fcl (default), fastron-fk or fastron-rbf: plan on a learned proxy checker; every\n"
          "              path is verified on FCL and its invalid stretches replanned (verify and repair)\n"
+         "  --ompl-log  every run of every planner in OMPL's benchmark log format: ompl_benchmark_statistics\n"
+         "              -d DB FILE makes the database Planner Arena reads\n"
          "  --check     print the scenario's summary, validate planners and --set, verify the witness\n";
 }
 
@@ -77,6 +79,7 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     else if (flag == "--svg") o.svg_dir = value();
     else if (flag == "--paths") o.paths_json = value();
     else if (flag == "--path-dir") o.paths_dir = value();
+    else if (flag == "--ompl-log") o.ompl_log = value();
     else if (flag == "--simplify") {
       o.simplify = true;
       if (i + 1 < argc && (std::string(argv[i + 1]) == "svpp" || std::string(argv[i + 1]) == "shortcut"))
@@ -94,7 +97,8 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
   }
   if (!o.help && o.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
   for (const auto& [flag, path] : {std::pair{"--json", &o.json_path}, std::pair{"--paths", &o.paths_json},
-                                   std::pair{"--svg", &o.svg_dir}, std::pair{"--path-dir", &o.paths_dir}})
+                                   std::pair{"--svg", &o.svg_dir}, std::pair{"--path-dir", &o.paths_dir},
+                                   std::pair{"--ompl-log", &o.ompl_log}})
     if (path->empty() && std::find(argv, argv + argc, std::string(flag)) != argv + argc)
       throw std::invalid_argument(std::string("flag ") + flag + ": empty path");
   return o;

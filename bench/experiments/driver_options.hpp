@@ -19,6 +19,7 @@ struct DriverOptions {
   std::string svg_dir;
   std::string paths_json;  // --paths: every run's certified waypoints
   std::string paths_dir;   // --path-dir: one OMPL matrix text file per solved run
+  std::string ompl_log;    // --ompl-log: every run in OMPL's benchmark log format (Planner Arena)
   bool simplify = false;   // --simplify: shortcut and reduce every solved path (certified)
   bool simplify_svm = false;  // --simplify svpp: SVM smoothing instead (Miura 2006 sec. V-A; point robots)
   std::vector<std::pair<std::string, std::string>> overrides;  // ("svmp.sigma", "0.3")

@@ -9,6 +9,8 @@
 #include <memory>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "bench/experiments/atomic_file.hpp"
 #include "bench/experiments/output_text.hpp"
 #include "bench/experiments/svg_writer.hpp"
@@ -34,6 +36,14 @@ Stats collect(const PlannerRuns& runs, bool solved_only, F field) {
 }
 
 using Clock = planners::Clock;
+
+// The process' resident memory (Linux /proc/self/statm); 0 where it cannot be read.
+double residentMegabytes() {
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  if (!(statm >> pages >> resident)) return 0;
+  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
 
 // The build time of each run (carried by its first query's record).
 std::vector<double> buildTimes(const PlannerRuns& runs) {
@@ -129,15 +139,21 @@ struct World {
   const planners::PlanningContext context;
 };
 
-std::vector<std::unique_ptr<planners::Planner>> makePlanners(const cspace::Scenario& scenario,
-                                                             const DriverOptions& options,
-                                                             const planners::PlanningContext& context) {
+// The planners of --planners with the scenario's parameters and --set; `parameters` (when given) gets
+// each one's parameter values, set or default.
+std::vector<std::unique_ptr<planners::Planner>> makePlanners(
+    const cspace::Scenario& scenario, const DriverOptions& options, const planners::PlanningContext& context,
+    std::vector<std::map<std::string, std::string>>* parameters = nullptr) {
   std::vector<std::unique_ptr<planners::Planner>> planners;
   for (const auto& name : options.planners) {
     cspace::ParameterSet params = scenario.paramsFor(name);
     for (const auto& [key, value] : options.overrides)
       if (key.rfind(name + ".", 0) == 0) params.set(key.substr(name.size() + 1), value, "flag --set " + key + "=" + value);
     planners.push_back(planners::makePlanner(name, context, params));
+    if (!parameters) continue;
+    std::map<std::string, std::string>& values = parameters->emplace_back();
+    for (const auto& [key, declaration] : params.declarations())
+      values[key] = params.has(key) ? params.values().at(key) : declaration.fallback;
   }
   for (const auto& [key, value] : options.overrides) {
     const std::string planner = key.substr(0, key.find('.'));
@@ -208,11 +224,12 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
                                        std::ostream& log) {
   const World world(scenario, options, log);
   // Every planner is built first: a bad parameter stops the run before any work.
-  auto planners = makePlanners(scenario, options, world.context);
+  std::vector<std::map<std::string, std::string>> parameters;
+  auto planners = makePlanners(scenario, options, world.context, &parameters);
   std::vector<PlannerRuns> results;
   const auto& queries = scenario.queries;
   for (size_t p = 0; p < planners.size(); ++p) {
-    PlannerRuns runs{options.planners[p], {}};
+    PlannerRuns runs{options.planners[p], {}, parameters[p]};
     planners::Planner& planner = *planners[p];
     for (int r = 0; r < options.runs; ++r) {
       const std::uint64_t seed = options.seed + r;
@@ -231,11 +248,13 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         RunRecord record;
         record.seed = seed;
         record.query = static_cast<int>(i);
+        const double resident_mb = residentMegabytes();
         const auto t0 = Clock::now();
         if (queries.size() == 1) record.result = planner.solve(queries[i], seed, stop);
         else if (!planner.built()) record.result = build;
         else record.result = planner.query(queries[i], seed, stop);
         record.time_ms = planners::msSince(t0);
+        record.memory_mb = std::max(0.0, residentMegabytes() - resident_mb);
         if (i == 0 && queries.size() > 1 && planner.built()) {
           record.time_ms += build_ms;
           record.build_ms = build_ms;

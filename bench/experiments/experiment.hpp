@@ -4,6 +4,7 @@
 // every path the same way (length, minimum clearance at a quarter of the checking resolution, OMPL's
 // smoothness), optionally simplifies it, and reports the thesis-style table and the JSON described in
 // docs/architecture.md.
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -25,11 +26,13 @@ struct RunRecord {
   double smoothness = 0;     // OMPL's PathGeometric::smoothness of the final path
   double simplify_ms = 0;
   double min_clearance = 0;  // FCL distance along the path at resolution / 4
+  double memory_mb = 0;      // growth of the process' resident memory over the call (allocators free lazily)
 };
 
 struct PlannerRuns {
   std::string planner;
   std::vector<RunRecord> runs;
+  std::map<std::string, std::string> parameters;  // every parameter the planner read: its value, set or default
   int solved() const;     // solved, which with the driver's certifier means certified
   int certified() const;
 };

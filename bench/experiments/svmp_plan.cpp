@@ -1,12 +1,14 @@
 // svmp-plan: the experiment driver (docs/architecture.md, "The driver"). Loads a scenario, runs each planner N times with seeds
 // S, S+1, ..., prints the thesis-style table and writes JSON and pictures. Bad input: one clear error,
 // exit status 2.
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 
 #include "bench/experiments/atomic_file.hpp"
 #include "bench/experiments/driver_options.hpp"
 #include "bench/experiments/experiment.hpp"
+#include "bench/experiments/ompl_log.hpp"
 #include "bench/experiments/scenario_check.hpp"
 #include "cspace/scenario/scenario.hpp"
 
@@ -39,13 +41,32 @@ int main(int argc, char** argv) {
     }
     if (!options.json_path.empty()) experiments::checkWritable("--json", options.json_path);
     if (!options.paths_json.empty()) experiments::checkWritable("--paths", options.paths_json);
+    if (!options.ompl_log.empty()) {
+#ifdef SVMP_WITH_OMPL
+      experiments::checkWritable("--ompl-log", options.ompl_log);
+#else
+      std::cerr << "svmp-plan: flag --ompl-log " << options.ompl_log << ": this build has no OMPL (SVMP_WITH_OMPL=OFF)\n";
+      return 2;
+#endif
+    }
     std::cerr << "svmp-plan: " << scenario.name << ": running " << options.planners.size() << " planner(s), "
               << options.runs << " run(s) each\n";
+#ifdef SVMP_WITH_OMPL
+    experiments::ExperimentTiming timing{experiments::utcNow(), 0};
+#endif
+    [[maybe_unused]] const auto t0 = std::chrono::steady_clock::now();
     const auto results = experiments::runExperiment(scenario, options, std::cerr);
+#ifdef SVMP_WITH_OMPL
+    timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+#endif
     experiments::printTable(scenario, options, results, std::cout);
     if (!options.json_path.empty()) experiments::writeJson(options.json_path, scenario, options, results);
     if (!options.paths_json.empty()) experiments::writePathsJson(options.paths_json, scenario, results);
     if (!options.paths_dir.empty()) experiments::writePathMatrices(options.paths_dir, scenario, results, std::cerr);
+#ifdef SVMP_WITH_OMPL
+    if (!options.ompl_log.empty())
+      experiments::writeOmplLog(options.ompl_log, scenario, options, results, timing);
+#endif
     return 0;
   } catch (const cspace::ScenarioError& e) {
     std::cerr << "svmp-plan: " << e.what() << "\n";
