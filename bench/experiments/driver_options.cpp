@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 namespace svmp::experiments {
-namespace {
 
 long parseLong(const std::string& flag, const std::string& value, long min, long max) {
   char* end = nullptr;
@@ -25,8 +24,6 @@ double parseDouble(const std::string& flag, const std::string& value, double min
                                 std::to_string(max) + "], got '" + value + "'");
   return v;
 }
-
-}  // namespace
 
 const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"

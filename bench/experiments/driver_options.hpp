@@ -27,6 +27,10 @@ struct DriverOptions {
   bool help = false;
 };
 
+// A flag's integer or number within [min, max]; throws std::invalid_argument naming the flag and value.
+long parseLong(const std::string& flag, const std::string& value, long min, long max);
+double parseDouble(const std::string& flag, const std::string& value, double min, double max);
+
 // Throws std::invalid_argument naming the flag and the value.
 DriverOptions parseDriverOptions(int argc, const char* const* argv);
 const char* driverUsage();

@@ -1,0 +1,147 @@
+// svmp-ompl-benchmark: our planners beside OMPL's in OMPL's own benchmarking (OMPL 1.5,
+// ompl::tools::Benchmark; Moll, Sucan, Kavraki, "Benchmarking Motion Planning Algorithms", IEEE RAM
+// 2015). Loads a scenario, plans in an ompl::geometric::SimpleSetup on our FCL checker and validator
+// (planners/ompl/scenario_setup.hpp), runs each planner --runs times under --time-limit and writes
+// OMPL's log (whole or not at all), which ompl_benchmark_statistics turns into Planner Arena's database.
+// Our planners (svmp, prm, local, svpp: planners/ompl/svm_planners.hpp) take the scenario's parameters;
+// OMPL's (PRM, LazyPRM, RRTConnect, RRT) its defaults. Every run also records "collision checks"
+// (configurations our checker tested, whoever asked) and, for ours, our counters.
+// Bad input: one error naming the flag or file and value, exit status 2.
+#include <ompl/geometric/planners/prm/LazyPRM.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/driver_options.hpp"
+#include "cspace/scenario/scenario.hpp"
+#include "planners/ompl/scenario_setup.hpp"
+#include "planners/ompl/svm_planners.hpp"
+
+namespace {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+using namespace svmp;
+
+const char* kUsage =
+    "usage: svmp-ompl-benchmark --scenario FILE --log FILE [--planners LIST] [--runs N] [--time-limit SEC]\n"
+    "                           [--seed S] [--threads T] [--query I]\n"
+    "  --planners   comma-separated, default svmp,PRM,RRTConnect: ours (svmp, prm, local, svpp) and\n"
+    "               OMPL's (PRM, LazyPRM, RRTConnect, RRT)\n"
+    "  --runs       runs per planner (default 10); --time-limit seconds per run (default 10)\n"
+    "  --seed       OMPL's random seed (ompl::RNG::setSeed), default 1; --query: the scenario's query (0)\n"
+    "  --log        OMPL's benchmark log: ompl_benchmark_statistics -d DB FILE, then Planner Arena\n";
+
+struct Flags {
+  std::string scenario, log;
+  std::vector<std::string> planners = {"svmp", "PRM", "RRTConnect"};
+  int runs = 10, threads = 1, query = 0;
+  double time_limit = 10;
+  unsigned long seed = 1;
+};
+
+Flags parseFlags(int argc, char** argv) {
+  Flags f;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--help" || flag == "-h") throw std::invalid_argument("");
+    if (i + 1 >= argc) throw std::invalid_argument("flag " + flag + ": missing value");
+    const std::string v = argv[++i];
+    if (flag == "--scenario") f.scenario = v;
+    else if (flag == "--log") f.log = v;
+    else if (flag == "--runs") f.runs = static_cast<int>(experiments::parseLong(flag, v, 1, 100000));
+    else if (flag == "--threads") f.threads = static_cast<int>(experiments::parseLong(flag, v, 1, 1024));
+    else if (flag == "--query") f.query = static_cast<int>(experiments::parseLong(flag, v, 0, 100000));
+    else if (flag == "--seed") f.seed = static_cast<unsigned long>(experiments::parseLong(flag, v, 1, 1L << 62));
+    else if (flag == "--time-limit") f.time_limit = experiments::parseDouble(flag, v, 1e-3, 1e6);
+    else if (flag == "--planners") {
+      f.planners.clear();
+      std::stringstream list(v);
+      for (std::string name; std::getline(list, name, ',');)
+        if (!name.empty()) f.planners.push_back(name);
+      if (f.planners.empty()) throw std::invalid_argument("flag --planners: empty list");
+    } else throw std::invalid_argument("unknown flag '" + flag + "'");
+  }
+  if (f.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
+  if (f.log.empty()) throw std::invalid_argument("flag --log is required");
+  return f;
+}
+
+ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPtr& si, const cspace::Scenario& s) {
+  if (auto ours = ompl_planners::makeSvmOmplPlanner(name, si, s.paramsFor(name))) return ours;
+  if (name == "PRM") return std::make_shared<og::PRM>(si);
+  if (name == "LazyPRM") return std::make_shared<og::LazyPRM>(si);
+  if (name == "RRTConnect") return std::make_shared<og::RRTConnect>(si);
+  if (name == "RRT") return std::make_shared<og::RRT>(si);
+  throw std::invalid_argument("flag --planners: unknown planner '" + name +
+                              "' (svmp, prm, local, svpp, PRM, LazyPRM, RRTConnect, RRT)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Flags flags;
+  try {
+    flags = parseFlags(argc, argv);
+  } catch (const std::invalid_argument& e) {
+    const bool help = std::string(e.what()).empty();
+    (help ? std::cout : std::cerr) << (help ? "" : std::string("svmp-ompl-benchmark: ") + e.what() + "\n") << kUsage;
+    return help ? 0 : 2;
+  }
+  ompl::RNG::setSeed(flags.seed);  // before any OMPL generator exists, or it is ignored
+  try {
+    experiments::checkWritable("--log", flags.log);
+    cspace::Scenario scenario = cspace::loadScenario(flags.scenario);
+    if (flags.query >= static_cast<int>(scenario.queries.size()))
+      throw std::invalid_argument("flag --query: " + std::to_string(flags.query) + ": the scenario has " +
+                                  std::to_string(scenario.queries.size()) + " queries");
+    const std::string name = scenario.name;
+    const auto world = ompl_planners::ScenarioWorld::make(std::move(scenario), flags.threads);
+    const auto setup = world->simpleSetup(flags.query);
+    ompl::tools::Benchmark benchmark(*setup, name);
+    for (const std::string& planner : flags.planners)
+      benchmark.addPlanner(makePlanner(planner, setup->getSpaceInformation(), world->scenario()));
+    benchmark.addExperimentParameter("scenario_file", "TEXT", world->scenario().path);
+    benchmark.addExperimentParameter("threads", "INTEGER", std::to_string(flags.threads));
+    // The checker's count around each run: OMPL's planners and ours counted alike.
+    std::uint64_t checks_before = 0;
+    benchmark.setPreRunEvent([&](const ob::PlannerPtr&) { checks_before = world->checker().collisionChecks(); });
+    benchmark.setPostRunEvent([&](const ob::PlannerPtr& planner, ompl::tools::Benchmark::RunProperties& run) {
+      run["collision checks INTEGER"] = std::to_string(world->checker().collisionChecks() - checks_before);
+      const auto* ours = dynamic_cast<const ompl_planners::SvmOmplPlannerBase*>(planner.get());
+      if (!ours) return;
+      const planners::PlanResult& r = ours->lastResult();
+      run["local planner calls INTEGER"] = std::to_string(r.local_planner_calls);
+      run["distance queries INTEGER"] = std::to_string(r.distance_queries);
+      run["certified BOOLEAN"] = std::to_string(static_cast<int>(r.certified));
+      run["milestones INTEGER"] = std::to_string(r.milestones);
+      run["svmp status TEXT"] = planners::planStatusName(r.status);
+    });
+    std::cerr << "svmp-ompl-benchmark: " << name << ": " << flags.planners.size() << " planners, " << flags.runs
+              << " runs each, at most " << flags.time_limit << " s per run\n";
+    benchmark.benchmark(ompl::tools::Benchmark::Request(flags.time_limit, 4096.0, flags.runs, 0.05, false, false, false));
+    std::ostringstream log;
+    if (!benchmark.saveResultsToStream(log)) throw std::runtime_error("OMPL's Benchmark recorded no results");
+    experiments::writeFileAtomically(flags.log, log.str());
+    for (const auto& planner : benchmark.getRecordedExperimentData().planners) {
+      int solved = 0;
+      for (const auto& run : planner.runs) solved += run.count("solved BOOLEAN") && run.at("solved BOOLEAN") == "1";
+      std::cout << planner.name << ": " << solved << "/" << planner.runs.size() << " solved\n";
+    }
+    std::cerr << "svmp-ompl-benchmark: wrote " << flags.log << "\n";
+    return 0;
+  } catch (const cspace::ScenarioError& e) {
+    std::cerr << "svmp-ompl-benchmark: " << e.what() << "\n";
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "svmp-ompl-benchmark: " << flags.scenario << ": " << e.what() << "\n";
+  } catch (const std::runtime_error& e) {
+    std::cerr << "svmp-ompl-benchmark: " << e.what() << "\n";
+  }
+  return 2;
+}
