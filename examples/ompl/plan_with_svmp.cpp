@@ -1,0 +1,24 @@
+// The README's example of SVMP as an OMPL planner (planners/ompl/svm_planners.hpp): a scenario file in
+// OMPL's SimpleSetup with our checker, SVMP with the file's parameters and one set through OMPL's
+// ParamSet, the certified path printed as OMPL's matrix. usage: svmp-ompl-example [SCENARIO]
+#include <iostream>
+
+#include "cspace/scenario/scenario.hpp"
+#include "planners/ompl/scenario_setup.hpp"
+#include "planners/ompl/svm_planners.hpp"
+
+int main(int argc, char** argv) try {
+  namespace sop = svmp::ompl_planners;
+  auto world = sop::ScenarioWorld::make(svmp::cspace::loadScenario(argc > 1 ? argv[1] : "bench/scenarios/thesis_fig3_5.yaml"));
+  auto setup = world->simpleSetup();  // SimpleSetup on our FCL checker and validator
+  auto svmp = std::make_shared<sop::SvmpOmplPlanner>(setup->getSpaceInformation(), world->scenario().paramsFor("svmp"));
+  svmp->params().setParam("repair_rounds", "10");  // any field of SvmpOptions, checked as in a scenario file
+  setup->setPlanner(svmp);
+  if (setup->solve(5.0) != ompl::base::PlannerStatus::EXACT_SOLUTION) return 1;
+  setup->getSolutionPath().printAsMatrix(std::cout);  // every segment certified collision-free
+  std::cerr << svmp->lastResult().collision_checks << " collision checks, " << svmp->lastResult().milestones
+            << " milestones\n";
+} catch (const std::exception& e) {
+  std::cerr << "svmp-ompl-example: " << e.what() << "\n";
+  return 2;
+}
