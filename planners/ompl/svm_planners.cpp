@@ -6,6 +6,7 @@
 #include <ompl/util/Console.h>
 
 #include <limits>
+#include <mutex>
 
 #include "planners/ompl/foreign_checker.hpp"
 #include "planners/ompl/state_bridge.hpp"
@@ -162,7 +163,12 @@ ob::PlannerStatus SvmOmplPlannerBase::solve(const ob::PlannerTerminationConditio
   if (pdef_->getStartStateCount() == 0) return ob::PlannerStatus::INVALID_START;
   const Eigen::VectorXd& scale = context_->space.metricScale();
   const cspace::Query query{toConfiguration(pdef_->getStartState(0), scale), toConfiguration(goal->getState(), scale), {}};
-  const planners::Termination stop = planners::Termination::when([&ptc] { return ptc(); });
+  // OMPL's condition caches its answer in a plain bool; our planners poll from OpenMP threads.
+  std::mutex ptc_mutex;
+  const planners::Termination stop = planners::Termination::when([&ptc, &ptc_mutex] {
+    const std::lock_guard<std::mutex> lock(ptc_mutex);
+    return ptc();
+  });
   const std::uint64_t seed =
       seed_ ? (*seed_)++
             : (static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max())) << 31) ^

@@ -11,6 +11,8 @@
 //   setup->getPlanner()->params().setParam("sigma", "0.2");
 //   if (setup->solve(5.0) == ompl::base::PlannerStatus::EXACT_SOLUTION) setup->getSolutionPath().printAsMatrix(std::cout);
 //
+// - Problem: the ProblemDefinition's first start state and a GoalState (other goals give
+//   UNRECOGNIZED_GOAL_TYPE).
 // - Termination: solve(ptc) plans under a planners::Termination that fires when ptc does; every planner
 //   polls it between steps and in its long loops.
 // - Parameters: each Options' fields, declared in params() with their type, default and range as the
