@@ -1,6 +1,7 @@
 // Our planners as OMPL planners (planners/ompl/svm_planners.hpp): each solves through SimpleSetup on
 // our checker with a path an independent checker re-checks densely; an expired termination condition
-// stops them at once; getPlannerData is the roadmap; the ParamSet lists the options' fields and
+// stops them at once; the local planner's stalled descent is an approximate solution; getPlannerData
+// is the roadmap; the ParamSet lists the options' fields and
 // setting one changes the options (bad values refused); a user's StateValidityChecker is used by the
 // PRM and refused, with a reason, by SVMP.
 #include <gtest/gtest.h>
@@ -146,6 +147,23 @@ TEST(OmplPlanners, ParamSetListsTheOptionsAndSettingOneChangesThem) {
   prm.planner->solve(ob::timedPlannerTerminationCondition(10.0));
   EXPECT_LE(prm.ours().lastResult().milestones, 60u);
   EXPECT_GT(prm.ours().lastResult().milestones, 0u);
+}
+
+// A stalled descent (mu so small that a kink of |F| holds it) is OMPL's approximate solution.
+TEST(OmplPlanners, TheLocalPlannersStalledDescentIsAnApproximateSolution) {
+  OmplRun run("thesis_fig2_6.yaml", "local");
+  ASSERT_TRUE(run.planner->params().setParam("mu", "0.001"));
+  run.ours().setSeed(1);
+  EXPECT_EQ(run.setup->solve(10.0), ob::PlannerStatus::APPROXIMATE_SOLUTION) << run.ours().lastResult().message;
+  EXPECT_EQ(run.ours().lastResult().status, planners::PlanStatus::kLocalMinimum);
+  EXPECT_FALSE(run.setup->haveExactSolutionPath());
+  ASSERT_TRUE(run.setup->getProblemDefinition()->hasApproximateSolution());
+  const std::vector<Eigen::VectorXd> path = run.path();
+  ASSERT_GE(path.size(), 2u);
+  EXPECT_LT((path.front() - run.recheck->query().start).norm(), 1e-9);
+  const double to_goal = run.world->context().space.distance(path.back(), run.recheck->query().goal);
+  EXPECT_GT(to_goal, 0.01);
+  EXPECT_NEAR(run.setup->getProblemDefinition()->getSolutionDifference(), to_goal, 1e-9);
 }
 
 TEST(OmplPlanners, ABadParameterInTheConstructorThrows) {
