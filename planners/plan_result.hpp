@@ -56,4 +56,14 @@ struct PlanResult {
   bool solved() const { return status == PlanStatus::kSolved; }
 };
 
+// Folds a build's counters and phase times into the result of the query answered on it, so that one
+// record carries what the whole answer cost (a build answers no query: its query_ms is 0).
+inline void addBuild(const PlanResult& build, PlanResult& query) {
+  query.collision_checks += build.collision_checks;
+  query.local_planner_calls += build.local_planner_calls;
+  query.distance_queries += build.distance_queries;
+  query.certified_segments += build.certified_segments;
+  query.times += build.times;
+}
+
 }  // namespace svmp::planners

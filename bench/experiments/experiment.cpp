@@ -19,6 +19,7 @@
 #include "cspace/collision_checker.hpp"
 #include "cspace/fastron_checker.hpp"
 #include "cspace/motion_validator.hpp"
+#include "planners/exact_setup.hpp"
 #include "planners/path_simplifier.hpp"
 #include "planners/planner_registry.hpp"
 #include "planners/svpp_smoothing.hpp"
@@ -51,14 +52,6 @@ std::vector<double> buildTimes(const PlannerRuns& runs) {
   for (const RunRecord& r : runs.runs)
     if (r.query == 0) builds.push_back(r.build_ms);
   return builds;
-}
-
-// Folds the build's counters and phase times into the first query's result.
-void addBuild(const planners::PlanResult& build, planners::PlanResult& query) {
-  query.collision_checks += build.collision_checks;
-  query.local_planner_calls += build.local_planner_calls;
-  query.distance_queries += build.distance_queries;
-  query.times += build.times;  // a build answers no query: its query_ms is 0
 }
 
 // Path quality measured by an independent checker, so the planners' counters are untouched.
@@ -109,32 +102,20 @@ struct Proxy {
   std::unique_ptr<cspace::DiscreteMotionValidator> validator;  // the thesis' sampled validator, on the proxy
 };
 
-// Everything a run shares: the space, the exact checker, the thesis' sampled validator, the certifier
-// and an independent checker for measurements. Planners see `context`: the exact checker or the proxy,
-// and a repairer that verifies every non-roadmap path and replans its failing stretches on `exact`
-// (with the exact checker, segments that clip an obstacle between sampled checks).
-struct World {
+// Everything a run shares: the exact setup (space, FCL checker, the thesis' sampled validator, the
+// certifier, the repairer) and an independent checker for measurements. Planners see `context`: the
+// exact checker or the proxy, and a repairer that verifies every non-roadmap path and replans its
+// failing stretches on `exact` (with the exact checker, segments that clip an obstacle between sampled
+// checks).
+struct World : planners::ExactSetup {
   World(const cspace::Scenario& scenario, const DriverOptions& options, std::ostream& log)
-      : space(scenario.makeSpace()),
-        checker(scenario.robot, scenario.environment, scenario.self_collision),
-        validator(checker, space, scenario.resolution),
-        certifier(checker, space, scenario.resolution),
+      : ExactSetup(scenario, options.threads),
         measuring(scenario.robot, scenario.environment, scenario.self_collision),
-        exact{space, checker, validator, options.threads, &certifier},
-        repair_context{space, checker, certifier, options.threads, &certifier},
-        repairer(repair_context),
         proxy(options.checker == "fcl" ? nullptr : std::make_unique<Proxy>(scenario, options, exact, log)),
         context{space, proxy ? static_cast<const cspace::ValidityChecker&>(*proxy->checker) : checker,
                 proxy ? static_cast<const cspace::MotionValidator&>(*proxy->validator) : validator, options.threads,
                 &certifier, &repairer} {}
-  const cspace::ConfigurationSpace space;
-  const cspace::CollisionChecker checker;
-  const cspace::DiscreteMotionValidator validator;
-  const cspace::CertifiedMotionValidator certifier;
   const cspace::CollisionChecker measuring;
-  const planners::PlanningContext exact;
-  const planners::PlanningContext repair_context;  // repairs accept only segments the certifier proves
-  const planners::PathRepairer repairer;
   const std::unique_ptr<Proxy> proxy;
   const planners::PlanningContext context;
 };
@@ -258,7 +239,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         if (i == 0 && queries.size() > 1 && planner.built()) {
           record.time_ms += build_ms;
           record.build_ms = build_ms;
-          addBuild(build, record.result);
+          planners::addBuild(build, record.result);
         }
         record.raw_length = planners::pathLength(record.result.path, world.space);
         if (options.simplify && record.result.solved()) {

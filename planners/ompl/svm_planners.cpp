@@ -21,15 +21,6 @@ using planners::PlanStatus;
 
 bool isTrue(const std::string& text) { return text == "true" || text == "1"; }
 
-// What the build cost, added to the query's result (as svmp-plan's first query carries its build).
-void addBuild(const planners::PlanResult& build, planners::PlanResult& query) {
-  query.collision_checks += build.collision_checks;
-  query.local_planner_calls += build.local_planner_calls;
-  query.distance_queries += build.distance_queries;
-  query.certified_segments += build.certified_segments;
-  query.times += build.times;
-}
-
 }  // namespace
 
 // A foreign SpaceInformation's checker and validator as our seams.
@@ -178,7 +169,7 @@ ob::PlannerStatus SvmOmplPlannerBase::solve(const ob::PlannerTerminationConditio
     if (!planner_->built()) build = planner_->build(seed, stop);
     if (planner_->built()) {
       last_ = planner_->query(query, seed, stop);
-      addBuild(build, last_);
+      planners::addBuild(build, last_);
     } else {
       last_ = build;
     }
