@@ -1,9 +1,8 @@
 // Our planners as OMPL planners (planners/ompl/svm_planners.hpp): each solves through SimpleSetup on
 // our checker with a path an independent checker re-checks densely; an expired termination condition
 // stops them at once; the local planner's stalled descent is an approximate solution; getPlannerData
-// is the roadmap; the ParamSet lists the options' fields and
-// setting one changes the options (bad values refused); a user's StateValidityChecker is used by the
-// PRM and refused, with a reason, by SVMP.
+// is the roadmap; the ParamSet lists the options' fields and setting one changes the options (bad
+// values refused); a user's StateValidityChecker is used by the PRM and refused, with a reason, by SVMP.
 #include <gtest/gtest.h>
 
 #include <ompl/base/PlannerData.h>
