@@ -87,17 +87,23 @@ ob::SpaceInformationPtr makeSpaceInformation(const planners::PlanningContext& co
   }
   space->setBounds(bounds);
   if (sampler) space->setStateSamplerAllocator(sampler);
+  // With its cell sizes set (OMPL's default: the bounds in 20 cells) the projection counts as the
+  // user's, so the space's setup keeps it, sets it up and lists its parameters; one registered after
+  // setup would leave the space's ParamSet bound to the projection it replaced (freed). Orthogonal,
+  // not linear: a linear projection's Eigen matrix would be freed inside libompl, whose Eigen may
+  // align differently from ours (SVMP_NATIVE).
+  if (dim <= 2) {
+    std::vector<unsigned int> all(dim);
+    std::vector<double> cells(dim);
+    for (int i = 0; i < dim; ++i) all[i] = i, cells[i] = (bounds.high[i] - bounds.low[i]) / 20.0;
+    auto projection = std::make_shared<ob::RealVectorOrthogonalProjectionEvaluator>(space, all);
+    projection->setCellSizes(cells);
+    space->registerDefaultProjection(projection);
+  }
   auto si = std::make_shared<ob::SpaceInformation>(space);
   si->setStateValidityChecker(std::make_shared<ContextValidityChecker>(si, context, owner));
   si->setMotionValidator(std::make_shared<ContextMotionValidator>(si, context, owner));
-  si->setup();  // registers the space's default projection, so ours comes after it
-  // Not a linear projection built here: its Eigen matrix would be freed inside libompl, whose Eigen
-  // may align differently from ours (SVMP_NATIVE).
-  if (dim <= 2) {
-    std::vector<unsigned int> all(dim);
-    for (int i = 0; i < dim; ++i) all[i] = i;
-    space->registerDefaultProjection(std::make_shared<ob::RealVectorOrthogonalProjectionEvaluator>(space, all));
-  }
+  si->setup();
   return si;
 }
 

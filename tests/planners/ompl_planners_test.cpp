@@ -173,6 +173,22 @@ TEST(OmplPlanners, ABadParameterInTheConstructorThrows) {
                cspace::ScenarioError);
 }
 
+// Benchmark reads the SpaceInformation's parameters, the default projection's cell sizes among them:
+// they must be the projection's that is in use (OMPL 1.5's identity projection is replaced in 2-D).
+TEST(OmplPlanners, TheSpaceInformationsParametersAreItsProjections) {
+  auto world = ScenarioWorld::make(planners::test::makeWorld(scenarioText("thesis_fig2_6.yaml"))->scenario);
+  const ob::SpaceInformationPtr si = world->spaceInformation();
+  const auto& projection = si->getStateSpace()->getDefaultProjection();
+  ASSERT_EQ(projection->getDimension(), 2u);
+  ASSERT_EQ(projection->getCellSizes().size(), 2u);  // set up (a projection registered after setup is not)
+  std::map<std::string, std::string> params;
+  si->params().getParams(params);
+  ASSERT_EQ(params.count("projection.cellsize.0"), 1u) << params.size();
+  EXPECT_NEAR(std::stod(params["projection.cellsize.0"]), projection->getCellSizes()[0], 1e-5);  // 6 digits
+  const auto& bounds = si->getStateSpace()->as<ob::RealVectorStateSpace>()->getBounds();
+  EXPECT_DOUBLE_EQ(projection->getCellSizes()[1], (bounds.high[1] - bounds.low[1]) / 20.0);
+}
+
 // A user's checker: the unit square without a disc of radius 0.25 at its centre, counting its calls.
 class DiscChecker final : public ob::StateValidityChecker {
  public:
