@@ -87,6 +87,7 @@ Properties runProperties(const RunRecord& r, bool simplified) {
   p["repaired stretches INTEGER"] = std::to_string(result.repaired_stretches);
   p["exact checks INTEGER"] = integer(result.exact_checks);
   p["support vectors INTEGER"] = integer(result.support_vectors);
+  p["milestones INTEGER"] = integer(result.milestones);
   p["build time REAL"] = real(r.build_ms / 1000);
   p["sampling time REAL"] = real(result.times.sampling_ms / 1000);
   p["training time REAL"] = real(result.times.training_ms / 1000);

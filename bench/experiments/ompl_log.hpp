@@ -14,8 +14,9 @@
 // certificate, which is stronger than OMPL's sampled check), with --simplify the "simplified
 // solution" properties and the simplification time; graph states / motions (milestones, roadmap
 // edges). Ours besides: seed, query, svmp status, collision checks, local planner calls, distance
-// queries, certified segments, repaired stretches, exact checks, support vectors, and the phase times
-// (s) of build, sampling, training, milestones, roadmap, query and certification.
+// queries, certified segments, repaired stretches, exact checks, support vectors, milestones (as graph
+// states; svmp-ompl-benchmark records it too), and the phase times (s) of build, sampling, training,
+// milestones, roadmap, query and certification.
 #include <string>
 #include <vector>
 

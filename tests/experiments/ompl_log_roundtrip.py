@@ -91,7 +91,8 @@ def main():
         for column, key in (("collision_checks", "collision_checks"), ("local_planner_calls", "local_planner_calls"),
                             ("distance_queries", "distance_queries"), ("certified_segments", "certified_segments"),
                             ("repaired_stretches", "repaired_stretches"), ("exact_checks", "exact_checks"),
-                            ("support_vectors", "support_vectors"), ("graph_states", "milestones"),
+                            ("support_vectors", "support_vectors"), ("milestones", "milestones"),
+                            ("graph_states", "milestones"),
                             ("graph_motions", "roadmap_edges")):
             check(column, key)
             ints = [r[column] for r in rows]
