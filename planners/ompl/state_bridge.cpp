@@ -37,7 +37,8 @@ ContextValidityChecker::ContextValidityChecker(const ob::SpaceInformationPtr& si
                                                const planners::PlanningContext& context,
                                                std::shared_ptr<const void> owner)
     : ob::StateValidityChecker(si), context_(context), owner_(std::move(owner)) {
-  specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::EXACT;
+  // FCL's distance, which may overestimate by millimetres (docs/architecture.md, "Seams").
+  specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::APPROXIMATE;
 }
 
 bool ContextValidityChecker::isValid(const ob::State* state) const {

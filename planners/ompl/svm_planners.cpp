@@ -26,12 +26,12 @@ bool isTrue(const std::string& text) { return text == "true" || text == "1"; }
 // A foreign SpaceInformation's checker and validator as our seams.
 struct SvmOmplPlannerBase::ForeignSeams {
   explicit ForeignSeams(const ob::SpaceInformationPtr& si)
-      : space(configurationSpaceOf(*si)), checker(si), validator(si, checker, space) {}
+      : space(configurationSpaceOf(*si)), checker(std::in_place, si), validator(si, *checker, space) {}
   // Our checker with the SpaceInformation's own MotionValidator.
   ForeignSeams(const ob::SpaceInformationPtr& si, const planners::PlanningContext& ours)
-      : space(ours.space), checker(si), validator(si, ours.checker, ours.space) {}
+      : space(ours.space), validator(si, ours.checker, space) {}
   cspace::ConfigurationSpace space;
-  ForeignValidityChecker checker;
+  std::optional<ForeignValidityChecker> checker;  // empty when the checker is ours
   ForeignMotionValidator validator;
 };
 
@@ -118,7 +118,7 @@ std::string SvmOmplPlannerBase::prepare() {
                "ContextValidityChecker, e.g. from ScenarioWorld), and " + needs_own_checker_;
       foreign_ = std::make_unique<ForeignSeams>(si_);
       // A user's checker need not be thread-safe: one thread; no certifier: OMPL's guarantee only.
-      context_.emplace(planners::PlanningContext{foreign_->space, foreign_->checker, foreign_->validator, 1});
+      context_.emplace(planners::PlanningContext{foreign_->space, *foreign_->checker, foreign_->validator, 1});
     }
     planner_ = planners::makePlanner(getName(), *context_, params_);
   } catch (const std::exception& e) {

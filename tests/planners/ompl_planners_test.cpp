@@ -5,6 +5,7 @@
 // values refused); a user's StateValidityChecker is used by the PRM and refused, with a reason, by SVMP.
 #include <gtest/gtest.h>
 
+#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -171,6 +172,23 @@ TEST(OmplPlanners, ABadParameterInTheConstructorThrows) {
                cspace::ScenarioError);
   EXPECT_THROW(PrmOmplPlanner(world->spaceInformation(), cspace::ParameterSet("t", "", {{"sample", "9"}})),
                cspace::ScenarioError);
+}
+
+// Our checker with OMPL's own motion validator: the planner validates segments through it and still
+// certifies the path with our certifier.
+TEST(OmplPlanners, OurCheckerWithOmplsMotionValidatorStillCertifies) {
+  OmplRun run("thesis_fig2_6.yaml", "prm");
+  const ob::SpaceInformationPtr& si = run.setup->getSpaceInformation();
+  si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
+  run.planner->setup();
+  run.ours().setSeed(1);
+  ASSERT_EQ(run.planner->solve(ob::timedPlannerTerminationCondition(10.0)), ob::PlannerStatus::EXACT_SOLUTION)
+      << run.ours().lastResult().message;
+  EXPECT_TRUE(run.ours().usesOwnChecker());
+  EXPECT_TRUE(run.ours().lastResult().certified);
+  EXPECT_GT(run.ours().lastResult().local_planner_calls, 0u);
+  EXPECT_GT(si->getMotionValidator()->getValidMotionCount(), 0u);  // OMPL's validator did the work
+  EXPECT_TRUE(planners::test::pathIsValid(*run.recheck, run.path()));
 }
 
 // Benchmark reads the SpaceInformation's parameters, the default projection's cell sizes among them:
