@@ -4,9 +4,13 @@
 // ACM TIST 2011, sec. 5.1): a column is kept with the length it was last requested at (the active
 // set size under shrinking) and extended on demand; swapIndex() follows the solver's permutation.
 // Float halves the memory per entry, so twice as many columns fit; the solver accumulates in
-// double. Not thread-safe: one cache per solver.
+// double. Evicted and outgrown buffers are kept as spares and reused before new memory is taken:
+// freeing them returned pages to the OS and the next column faulted them in again (a quarter of a
+// warm retrain's time went to the kernel zeroing pages). Memory counts buffer capacities, spares
+// included. Not thread-safe: one cache per solver.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -35,18 +39,30 @@ class KernelCache {
   struct Column {
     std::unique_ptr<float[]> data;
     int len = 0;
+    int capacity = 0;  // floats allocated for data (>= len)
     int prev = -1;
     int next = -1;
   };
   void unlink(int i);
   void linkNewest(int i);
   void evict(int i);
+  struct Buffer {
+    std::unique_ptr<float[]> data;
+    int capacity;
+    bool fresh;  // new memory, counted against free_
+  };
+  // A buffer of at least len floats: the smallest fitting spare, else new memory (releasing
+  // spares, then evicting the least recently used columns, until it fits). own_capacity: the
+  // requesting column's buffer, freed by the caller once copied.
+  Buffer takeBuffer(int len, int own_capacity);
+  void keepSpare(std::unique_ptr<float[]> data, int capacity);
 
   std::vector<Column> columns_;
   int oldest_ = -1;  // LRU list head
   int newest_ = -1;  // LRU list tail
   long long capacity_;
-  long long free_;
+  long long free_;  // capacity_ minus the capacities of all buffers held (columns and spares)
+  std::multimap<int, std::unique_ptr<float[]>> spares_;  // by capacity
   long long hits_ = 0;
   long long misses_ = 0;
 };
