@@ -1,4 +1,4 @@
-// Vectors wider than the baseline ISA are only used inside target("avx2") functions (and in the
+// Vectors wider than the baseline ISA are only used inside target("avx2") / target("avx512f") functions (and in the
 // always-inlined exponential of svm/fast_exp.hpp they call), so no ABI for them is ever used.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <string>
 
 #include "svm/kernel.hpp"
 
@@ -30,6 +32,12 @@ struct V<4> {
   using D = double __attribute__((vector_size(32)));
   using F = float __attribute__((vector_size(16)));
   using I = long long __attribute__((vector_size(32)));
+};
+template <>
+struct V<8> {
+  using D = double __attribute__((vector_size(64)));
+  using F = float __attribute__((vector_size(32)));
+  using I = long long __attribute__((vector_size(64)));
 };
 
 #define SVMP_INLINE inline __attribute__((always_inline))
@@ -306,25 +314,60 @@ SVMP_AVX2 double truncatedRbfSumAvx2(const BlockedSupportVectors& sv, const doub
               : truncatedRbfSumDispatch<4, false>(sv, q, gamma, r2, grad);
 }
 
+#define SVMP_AVX512 __attribute__((target("avx512f,fma")))
+
+SVMP_AVX512 ArgMax selectIAvx512(int m, const double* up, const double* y, const double* G) {
+  return selectIImpl<8>(m, up, y, G);
+}
+SVMP_AVX512 SelectJ selectJAvx512(int m, const double* low, const double* y, const double* G,
+                                  const double* diag, const float* Ki, double kii, double gmax,
+                                  double tau) {
+  return selectJImpl<8>(m, low, y, G, diag, Ki, kii, gmax, tau);
+}
+SVMP_AVX512 void updateGradientAvx512(int m, double* G, const double* y, const float* Ki,
+                                      const float* Kj, double wi, double wj) {
+  updateGradientImpl<8>(m, G, y, Ki, Kj, wi, wj);
+}
+template <typename Out>
+SVMP_AVX512 void rbfColumnAvx512(const double* coords, long stride, int d, const double* z,
+                                 double neg_gamma, int len, Out* out) {
+  rbfColumnImpl<8>(coords, stride, d, z, neg_gamma, len, out);
+}
+SVMP_AVX512 double truncatedRbfSumAvx512(const BlockedSupportVectors& sv, const double* q,
+                                         double gamma, double r2, double* grad) {
+  return grad ? truncatedRbfSumDispatch<8, true>(sv, q, gamma, r2, grad)
+              : truncatedRbfSumDispatch<8, false>(sv, q, gamma, r2, grad);
+}
+
 const bool kHaveAvx2 = __builtin_cpu_supports("avx2");
+// SVMP_SIMD=avx2 keeps a machine with AVX-512 on the 4-lane loops (to measure what 8 lanes give).
+const bool kHaveAvx512 = __builtin_cpu_supports("avx512f") && [] {
+  const char* v = std::getenv("SVMP_SIMD");
+  return v == nullptr || std::string(v) != "avx2";
+}();
 
 }  // namespace
 
 bool usingAvx2() { return kHaveAvx2; }
+bool usingAvx512() { return kHaveAvx512; }
 
 ArgMax selectI(int m, const double* up, const double* y, const double* G) {
+  if (kHaveAvx512) return selectIAvx512(m, up, y, G);
   return kHaveAvx2 ? selectIAvx2(m, up, y, G) : selectIImpl<2>(m, up, y, G);
 }
 
 SelectJ selectJ(int m, const double* low, const double* y, const double* G, const double* diag,
                 const float* Ki, double kii, double gmax, double tau) {
+  if (kHaveAvx512) return selectJAvx512(m, low, y, G, diag, Ki, kii, gmax, tau);
   return kHaveAvx2 ? selectJAvx2(m, low, y, G, diag, Ki, kii, gmax, tau)
                    : selectJImpl<2>(m, low, y, G, diag, Ki, kii, gmax, tau);
 }
 
 void updateGradient(int m, double* G, const double* y, const float* Ki, const float* Kj, double wi,
                     double wj) {
-  if (kHaveAvx2)
+  if (kHaveAvx512)
+    updateGradientAvx512(m, G, y, Ki, Kj, wi, wj);
+  else if (kHaveAvx2)
     updateGradientAvx2(m, G, y, Ki, Kj, wi, wj);
   else
     updateGradientImpl<2>(m, G, y, Ki, Kj, wi, wj);
@@ -332,7 +375,9 @@ void updateGradient(int m, double* G, const double* y, const float* Ki, const fl
 
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
                float* out) {
-  if (kHaveAvx2)
+  if (kHaveAvx512)
+    rbfColumnAvx512(coords, stride, d, z, neg_gamma, len, out);
+  else if (kHaveAvx2)
     rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
   else
     rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
@@ -340,7 +385,9 @@ void rbfColumn(const double* coords, long stride, int d, const double* z, double
 
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
                double* out) {
-  if (kHaveAvx2)
+  if (kHaveAvx512)
+    rbfColumnAvx512(coords, stride, d, z, neg_gamma, len, out);
+  else if (kHaveAvx2)
     rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
   else
     rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
@@ -352,6 +399,7 @@ namespace svmp::svm::loops {
 
 double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double gamma, double r2,
                        double* grad) {
+  if (kHaveAvx512) return truncatedRbfSumAvx512(sv, q, gamma, r2, grad);
   if (kHaveAvx2) return truncatedRbfSumAvx2(sv, q, gamma, r2, grad);
   return grad ? truncatedRbfSumDispatch<2, true>(sv, q, gamma, r2, grad)
               : truncatedRbfSumDispatch<2, false>(sv, q, gamma, r2, grad);

@@ -1,7 +1,7 @@
 // The O(n) loops of one SMO iteration, the RBF kernel column and the truncated RBF sum, vectorised
-// and dispatched at run time to AVX2 (4 lanes) or baseline SSE2 (2 lanes). Working-set selection is
-// WSS2 of Fan, Chen, Lin, JMLR 6 (2005); the gradient update is libsvm's (Chang & Lin 2011,
-// sec. 4.1).
+// and dispatched at run time to AVX-512 (8 lanes), AVX2 (4 lanes) or baseline SSE2 (2 lanes);
+// SVMP_SIMD=avx2 in the environment caps them at AVX2. Working-set selection is WSS2 of Fan, Chen,
+// Lin, JMLR 6 (2005); the gradient update is libsvm's (Chang & Lin 2011, sec. 4.1).
 #pragma once
 
 namespace svmp::svm::loops {
@@ -50,5 +50,6 @@ double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double 
                        double* grad);
 
 bool usingAvx2();
+bool usingAvx512();
 
 }  // namespace svmp::svm::loops
