@@ -94,6 +94,30 @@ float* KernelCache::request(int i, int len, int* filled) {
   return c.data.get();
 }
 
+void KernelCache::resize(int n) {
+  for (int i = n; i < size(); ++i) evictColumn(i);
+  for (int i = 0; i < std::min(n, size()); ++i) columns_[i].len = std::min(columns_[i].len, n);
+  columns_.resize(n);
+  const long long at_least = 2LL * n;  // the solver's two columns, as in the constructor
+  if (capacity_ < at_least) {
+    free_ += at_least - capacity_;
+    capacity_ = at_least;
+  }
+}
+
+void KernelCache::evictColumn(int i) {
+  if (columns_[i].len > 0) evict(i);
+}
+
+void KernelCache::clear() {
+  while (oldest_ >= 0) evict(oldest_);
+}
+
+float* KernelCache::cached(int i, int* len) {
+  *len = columns_[i].len;
+  return columns_[i].data.get();
+}
+
 void KernelCache::swapIndex(int i, int j) { swapIndices({{i, j}}); }
 
 void KernelCache::swapIndices(const std::vector<std::pair<int, int>>& swaps) {
@@ -118,6 +142,8 @@ void KernelCache::swapIndices(const std::vector<std::pair<int, int>>& swaps) {
       if (c.len <= lo || lo == hi) continue;
       if (c.len > hi) {
         std::swap(data[lo], data[hi]);
+      } else if (lo > 0) {
+        c.len = lo;  // entry hi is not cached: keep the prefix (libsvm drops the whole column)
       } else {
         evict(h);
         break;

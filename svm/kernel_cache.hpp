@@ -2,7 +2,8 @@
 //
 // Same policy as libsvm's Cache (Chang & Lin, "LIBSVM: a library for support vector machines",
 // ACM TIST 2011, sec. 5.1): a column is kept with the length it was last requested at (the active
-// set size under shrinking) and extended on demand; swapIndex() follows the solver's permutation.
+// set size under shrinking) and extended on demand; swapIndex() follows the solver's permutation,
+// cutting a column short of the first swapped entry it does not hold (libsvm evicts it).
 // Float halves the memory per entry, so twice as many columns fit; the solver accumulates in
 // double. Evicted and outgrown buffers are kept as spares and reused before new memory is taken:
 // freeing them returned pages to the OS and the next column faulted them in again (a quarter of a
@@ -31,6 +32,15 @@ class KernelCache {
   // thousands of pairs at a time, and a column-major pass keeps each column in cache.
   void swapIndices(const std::vector<std::pair<int, int>>& swaps);
 
+  // A retained cache follows its solver to a new problem (SolverWorkspace): n slots, columns at
+  // slots >= n dropped and the others cut to n entries; evictColumn drops one; cached() is a column
+  // and its length (0 when absent) without counting a hit or touching the LRU order.
+  void resize(int n);
+  void evictColumn(int i);
+  void clear();
+  float* cached(int i, int* len);
+
+  int size() const { return static_cast<int>(columns_.size()); }
   long long capacityFloats() const { return capacity_; }
   long long hits() const { return hits_; }
   long long misses() const { return misses_; }

@@ -9,6 +9,7 @@
 #include "svm/kernel_cache.hpp"
 #include "svm/kernel_column.hpp"
 #include "svm/simd_loops.hpp"
+#include "svm/solver_workspace.hpp"
 
 namespace svmp::svm {
 
@@ -60,37 +61,43 @@ void validateProblem(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const E
 // Solver state in the shrinking permutation: samples [0, active_) are active.
 class SmoSolver {
  public:
-  SmoSolver(KernelColumns& data, const Eigen::VectorXd& y, const Eigen::VectorXd& C,
-            const SolverOptions& opt)
+  // Sample order[t] at position t; data and cache are laid out the same way.
+  SmoSolver(KernelColumns& data, KernelCache& cache, const std::vector<int>& order,
+            const Eigen::VectorXd& y, const Eigen::VectorXd& C, const SolverOptions& opt)
       : data_(data),
         opt_(opt),
         n_(data.size()),
         active_(n_),
-        cache_(n_, opt.cache_mb),
-        y_(y.data(), y.data() + n_),
-        C_(C.data(), C.data() + n_),
+        cache_(cache),
+        y_(n_),
+        C_(n_),
         alpha_(n_, 0.0),
         G_(n_, -1.0),
         G_bar_(n_, 0.0),
         scratch_(n_),
         up_penalty_(n_),
         low_penalty_(n_),
-        index_(n_) {
-    for (int i = 0; i < n_; ++i) index_[i] = i;
+        index_(order) {
+    for (int t = 0; t < n_; ++t) {
+      y_[t] = y[index_[t]];
+      C_[t] = C[index_[t]];
+    }
   }
 
   // A warm start has an accurate gradient from the start, so shrinking may begin at once: the
   // kernel columns are then computed over the active set only (libsvm waits 1000 iterations).
+  // Vectors in sample order.
   void setStart(const Eigen::VectorXd& alpha, const Eigen::VectorXd& G, const Eigen::VectorXd& Gb) {
     shrink_at_start_ = true;
-    for (int i = 0; i < n_; ++i) {
-      alpha_[i] = alpha[i];
-      G_[i] = G[i];
-      G_bar_[i] = Gb[i];
+    for (int t = 0; t < n_; ++t) {
+      alpha_[t] = alpha[index_[t]];
+      G_[t] = G[index_[t]];
+      G_bar_[t] = Gb[index_[t]];
     }
   }
 
   SolverResult run();
+  const std::vector<int>& order() const { return index_; }
 
  private:
   bool isUpper(int i) const { return alpha_[i] >= C_[i]; }
@@ -106,7 +113,10 @@ class SmoSolver {
   const float* column(int i, int len) {
     int filled = 0;
     float* col = cache_.request(i, len, &filled);
-    if (filled < len) data_.column(i, filled, len, col + filled);
+    if (filled < len) {
+      data_.column(i, filled, len, col + filled);
+      kernel_entries_ += len - filled;
+    }
     return col;
   }
 
@@ -123,9 +133,10 @@ class SmoSolver {
   const SolverOptions& opt_;
   int n_;
   int active_;
+  long long kernel_entries_ = 0;
   bool unshrink_ = false;
   bool shrink_at_start_ = false;
-  KernelCache cache_;
+  KernelCache& cache_;
   std::vector<double> y_, C_, alpha_, G_, G_bar_, scratch_;
   // I_up / I_low (Keerthi et al.) as additive penalties: 0 when in the set, -inf / +inf when not.
   std::vector<double> up_penalty_, low_penalty_;
@@ -407,6 +418,7 @@ SolverResult SmoSolver::run() {
   result.objective = 0.5 * v;
   result.cache_hits = cache_.hits();
   result.cache_misses = cache_.misses();
+  result.kernel_entries = kernel_entries_;
   return result;
 }
 
@@ -428,25 +440,44 @@ std::string SolverResult::report() const {
   msg << (status == SolverStatus::kOptimal ? "optimal" : "iteration limit") << ", iterations "
       << iterations << ", objective " << objective << ", bias " << bias << ", violation "
       << violation << ", SV " << support_vectors << " (bounded " << bounded_support_vectors
-      << "), cache hits " << cache_hits << " misses " << cache_misses;
+      << "), cache hits " << cache_hits << " misses " << cache_misses << ", kernel entries "
+      << kernel_entries;
   return msg.str();
 }
 
 SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
-                         const WarmStart* warm) {
+                         const WarmStart* warm, SolverWorkspace* workspace) {
   validateProblem(X, y, C, kernel, opt);
-  KernelColumns data(X, kernel);
-  SmoSolver solver(data, y, C, opt);
+  if (warm != nullptr)
+    if (const std::string w = warm->validate(X.cols(), X.rows()); !w.empty()) fail(w);
+  RetainedLayout layout;
+  std::unique_ptr<KernelCache> cache;
+  if (workspace != nullptr) {
+    cache = WorkspaceAccess::take(*workspace, X, y, kernel, opt.cache_mb, warm, layout);
+  } else {
+    cache = std::make_unique<KernelCache>(static_cast<int>(X.cols()), opt.cache_mb);
+    layout.order.resize(X.cols());
+    for (Eigen::Index i = 0; i < X.cols(); ++i) layout.order[i] = static_cast<int>(i);
+  }
+  KernelColumns data(X, kernel, layout.order);
+  SmoSolver solver(data, *cache, layout.order, y, C, opt);
   WarmStartCounts counts;
   if (warm != nullptr) {
-    if (const std::string w = warm->validate(X.cols(), X.rows()); !w.empty()) fail(w);
+    // The start is computed in sample order (its kernel rows need no cache).
+    const KernelColumns in_order(X, kernel);
     Eigen::VectorXd alpha, G, G_bar;
-    counts = detail::initialiseFromWarmStart(*warm, X, y, C, data, alpha, G, G_bar);
+    counts = detail::initialiseFromWarmStart(*warm, X, y, C, in_order, alpha, G, G_bar);
     solver.setStart(alpha, G, G_bar);
   }
   SolverResult result = solver.run();
+  counts.reused_columns = layout.reused_columns;
+  counts.patched_rows = layout.patched_rows;
   result.warm = counts;
+  if (workspace != nullptr)
+    result.workspace_solve = WorkspaceAccess::give(*workspace, std::move(cache), kernel,
+                                                   static_cast<int>(X.rows()), opt.cache_mb,
+                                                   solver.order());
   return result;
 }
 
@@ -461,6 +492,7 @@ WarmStart makeWarmStart(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
   w.gradient = previous.gradient;
   w.gradient_bound = previous.gradient_bound;
   w.previous_index = std::move(previous_index);
+  w.workspace_solve = previous.workspace_solve;
   return w;
 }
 

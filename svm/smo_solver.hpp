@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "svm/kernel.hpp"
+#include "svm/solver_workspace.hpp"
 #include "svm/warm_start.hpp"
 
 namespace svmp::svm {
@@ -44,16 +45,20 @@ struct SolverResult {
   int support_vectors = 0;          // alpha_i > 0
   int bounded_support_vectors = 0;  // alpha_i = C_i
   long long cache_hits = 0, cache_misses = 0;
+  long long kernel_entries = 0;  // kernel values computed for the cache (the solver's main cost)
   WarmStartCounts warm;  // what the warm start changed (zero for a cold start)
+  long long workspace_solve = 0;  // SolverWorkspace::lastSolve() after this solve (0: none given)
 
   std::string report() const;  // one line
 };
 
 // Throws std::invalid_argument for bad input (sizes, NaN/Inf, labels not +-1, one class only,
-// C <= 0, bad kernel parameters, bad options, inconsistent warm start).
+// C <= 0, bad kernel parameters, bad options, inconsistent warm start). With a workspace, a warm
+// start from the workspace's last solve keeps its cached kernel columns (svm/solver_workspace.hpp);
+// the result is the same optimum either way.
 SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
-                         const WarmStart* warm = nullptr);
+                         const WarmStart* warm = nullptr, SolverWorkspace* workspace = nullptr);
 
 // Warm start for a new problem from the previous problem (X, y, C) and its solution.
 // previous_index[i] is the previous index of new sample i, or -1 for an added sample.
