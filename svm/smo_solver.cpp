@@ -72,7 +72,7 @@ class SmoSolver {
         y_(n_),
         C_(n_),
         alpha_(n_, 0.0),
-        G_(n_, -1.0),
+        yG_(n_),
         G_bar_(n_, 0.0),
         scratch_(n_),
         up_penalty_(n_),
@@ -81,6 +81,7 @@ class SmoSolver {
     for (int t = 0; t < n_; ++t) {
       y_[t] = y[index_[t]];
       C_[t] = C[index_[t]];
+      yG_[t] = -y_[t];  // G = Q alpha - e at alpha = 0
     }
   }
 
@@ -91,7 +92,7 @@ class SmoSolver {
     shrink_at_start_ = true;
     for (int t = 0; t < n_; ++t) {
       alpha_[t] = alpha[index_[t]];
-      G_[t] = G[index_[t]];
+      yG_[t] = y_[t] * G[index_[t]];
       G_bar_[t] = Gb[index_[t]];
     }
   }
@@ -103,6 +104,7 @@ class SmoSolver {
   bool isUpper(int i) const { return alpha_[i] >= C_[i]; }
   bool isLower(int i) const { return alpha_[i] <= 0.0; }
   bool isFree(int i) const { return !isUpper(i) && !isLower(i); }
+  double gradient(int i) const { return y_[i] * yG_[i]; }
   bool inUp(int i) const { return y_[i] > 0 ? !isUpper(i) : !isLower(i); }
   bool inLow(int i) const { return y_[i] > 0 ? !isLower(i) : !isUpper(i); }
   void updateMasks(int i) {
@@ -134,10 +136,13 @@ class SmoSolver {
   int n_;
   int active_;
   long long kernel_entries_ = 0;
+  long long active_sum_ = 0;
   bool unshrink_ = false;
   bool shrink_at_start_ = false;
   KernelCache& cache_;
-  std::vector<double> y_, C_, alpha_, G_, G_bar_, scratch_;
+  // y_t G_t rather than G_t (y_t = +-1): the gradient update then needs no labels, and the
+  // selection loops read one array less.
+  std::vector<double> y_, C_, alpha_, yG_, G_bar_, scratch_;
   // I_up / I_low (Keerthi et al.) as additive penalties: 0 when in the set, -inf / +inf when not.
   std::vector<double> up_penalty_, low_penalty_;
   std::vector<int> index_;  // original index of each position
@@ -146,19 +151,18 @@ class SmoSolver {
 
 bool SmoSolver::selectWorkingSet(int& out_i, int& out_j) {
   const int m = active_;
-  const double* y = y_.data();
-  const double* G = G_.data();
+  const double* yG = yG_.data();
   const double* up = up_penalty_.data();
   const double* low = low_penalty_.data();
   // i = argmax_{t in I_up} -y_t G_t; masks are additive penalties so the loops are branch-free.
-  const loops::ArgMax best_i = loops::selectI(m, up, y, G);
+  const loops::ArgMax best_i = loops::selectI(m, up, yG);
   if (best_i.index < 0) return false;
   const int i = best_i.index;
   const double gmax = best_i.value;
   // j = argmin over t in I_low with y_t G_t > -gmax of -(gmax + y_t G_t)^2 / curvature (WSS2)
   const float* Ki = column(i, m);
   const loops::SelectJ best_j =
-      loops::selectJ(m, low, y, G, data_.diagonalData(), Ki, data_.diagonal(i), gmax, kTau);
+      loops::selectJ(m, low, yG, data_.diagonalData(), Ki, data_.diagonal(i), gmax, kTau);
   if (gmax + best_j.gmax2 < opt_.eps || best_j.j < 0) return false;
   const int j = best_j.j;
   out_i = i;
@@ -178,7 +182,7 @@ void SmoSolver::update(int i, int j) {
   if (y_[i] != y_[j]) {
     double quad = data_.diagonal(i) + data_.diagonal(j) - 2.0 * kij;
     if (quad <= 0) quad = kTau;
-    const double delta = (-G_[i] - G_[j]) / quad;
+    const double delta = (-gradient(i) - gradient(j)) / quad;
     const double diff = ai - aj;
     ai += delta;
     aj += delta;
@@ -207,7 +211,7 @@ void SmoSolver::update(int i, int j) {
   } else {
     double quad = data_.diagonal(i) + data_.diagonal(j) - 2.0 * kij;
     if (quad <= 0) quad = kTau;
-    const double delta = (G_[i] - G_[j]) / quad;
+    const double delta = (gradient(i) - gradient(j)) / quad;
     const double sum = ai + aj;
     ai -= delta;
     aj += delta;
@@ -234,10 +238,10 @@ void SmoSolver::update(int i, int j) {
       }
     }
   }
-  // G_t += Q_ti dA_i + Q_tj dA_j with Q_ti = y_t y_i K_ti.
+  // G_t += Q_ti dA_i + Q_tj dA_j with Q_ti = y_t y_i K_ti, so y_t G_t += y_i dA_i K_ti + ...
   const double wi = y_[i] * (ai - old_ai);
   const double wj = y_[j] * (aj - old_aj);
-  loops::updateGradient(active_, G_.data(), y_.data(), Ki, Kj, wi, wj);
+  loops::updateGradient(active_, yG_.data(), Ki, Kj, wi, wj);
   const double* y = y_.data();
 
   const bool was_upper_i = old_ai >= Ci, was_upper_j = old_aj >= Cj;
@@ -256,8 +260,9 @@ void SmoSolver::update(int i, int j) {
 }
 
 bool SmoSolver::beShrunk(int i, double gmax1, double gmax2) const {
-  if (isUpper(i)) return y_[i] > 0 ? -G_[i] > gmax1 : -G_[i] > gmax2;
-  if (isLower(i)) return y_[i] > 0 ? G_[i] > gmax2 : G_[i] > gmax1;
+  const double g = gradient(i);
+  if (isUpper(i)) return y_[i] > 0 ? -g > gmax1 : -g > gmax2;
+  if (isLower(i)) return y_[i] > 0 ? g > gmax2 : g > gmax1;
   return false;
 }
 
@@ -265,7 +270,7 @@ void SmoSolver::shrink() {
   // gmax1 = max_{I_up} -y G, gmax2 = max_{I_low} y G  (libsvm's do_shrinking)
   double gmax1 = -kInf, gmax2 = -kInf;
   for (int t = 0; t < active_; ++t) {
-    const double yg = y_[t] * G_[t];
+    const double yg = yG_[t];
     if (inUp(t)) gmax1 = std::max(gmax1, -yg);
     if (inLow(t)) gmax2 = std::max(gmax2, yg);
   }
@@ -292,7 +297,7 @@ void SmoSolver::shrink() {
 
 void SmoSolver::reconstructGradient() {
   if (active_ == n_) return;
-  for (int t = active_; t < n_; ++t) G_[t] = G_bar_[t] - 1.0;
+  for (int t = active_; t < n_; ++t) yG_[t] = y_[t] * (G_bar_[t] - 1.0);
   // w_j = y_j alpha_j for free j (bounded ones are in G_bar already)
   int free_count = 0;
   for (int j = 0; j < active_; ++j) {
@@ -307,15 +312,15 @@ void SmoSolver::reconstructGradient() {
       double sum = 0.0;
 #pragma omp simd reduction(+ : sum)
       for (int j = 0; j < active_; ++j) sum += w[j] * static_cast<double>(Ki[j]);
-      G_[i] += y_[i] * sum;
+      yG_[i] += sum;
     }
   } else {
     for (int i = 0; i < active_; ++i) {
       if (w[i] == 0.0) continue;
       const float* Ki = column(i, n_);
-      // G_t += y_t w_i K_it over the inactive part (the two-column update with a zero weight)
-      loops::updateGradient(n_ - active_, G_.data() + active_, y_.data() + active_, Ki + active_,
-                            Ki + active_, w[i], 0.0);
+      // y_t G_t += w_i K_it over the inactive part (the two-column update with a zero weight)
+      loops::updateGradient(n_ - active_, yG_.data() + active_, Ki + active_, Ki + active_, w[i],
+                            0.0);
     }
   }
 }
@@ -326,7 +331,7 @@ void SmoSolver::swapIndex(int i, int j) {
   std::swap(y_[i], y_[j]);
   std::swap(C_[i], C_[j]);
   std::swap(alpha_[i], alpha_[j]);
-  std::swap(G_[i], G_[j]);
+  std::swap(yG_[i], yG_[j]);
   std::swap(G_bar_[i], G_bar_[j]);
   std::swap(up_penalty_[i], up_penalty_[j]);
   std::swap(low_penalty_[i], low_penalty_[j]);
@@ -339,7 +344,7 @@ double SmoSolver::bias() const {
   double ub = kInf, lb = -kInf, sum_free = 0.0;
   int nr_free = 0;
   for (int i = 0; i < active_; ++i) {
-    const double yg = y_[i] * G_[i];
+    const double yg = yG_[i];
     if (isUpper(i)) {
       if (y_[i] < 0)
         ub = std::min(ub, yg);
@@ -362,7 +367,7 @@ double SmoSolver::bias() const {
 double SmoSolver::violation() const {
   double m_up = -kInf, m_low = -kInf;
   for (int t = 0; t < n_; ++t) {
-    const double yg = y_[t] * G_[t];
+    const double yg = yG_[t];
     if (inUp(t)) m_up = std::max(m_up, -yg);
     if (inLow(t)) m_low = std::max(m_low, yg);
   }
@@ -393,6 +398,7 @@ SolverResult SmoSolver::run() {
       counter = 1;  // shrink at the next iteration
     }
     ++iter;
+    active_sum_ += active_;
     update(i, j);
   }
   if (active_ < n_) {
@@ -407,10 +413,10 @@ SolverResult SmoSolver::run() {
   result.gradient_bound.resize(n_);
   double v = 0.0;
   for (int t = 0; t < n_; ++t) {
-    v += alpha_[t] * (G_[t] - 1.0);
+    v += alpha_[t] * (gradient(t) - 1.0);
     const int o = index_[t];
     result.alpha[o] = alpha_[t];
-    result.gradient[o] = G_[t];
+    result.gradient[o] = gradient(t);
     result.gradient_bound[o] = G_bar_[t];
     if (alpha_[t] > 0) ++result.support_vectors;
     if (isUpper(t)) ++result.bounded_support_vectors;
@@ -419,6 +425,7 @@ SolverResult SmoSolver::run() {
   result.cache_hits = cache_.hits();
   result.cache_misses = cache_.misses();
   result.kernel_entries = kernel_entries_;
+  result.mean_active = iter > 0 ? static_cast<double>(active_sum_) / iter : 0.0;
   return result;
 }
 

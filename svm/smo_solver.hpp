@@ -46,6 +46,7 @@ struct SolverResult {
   int bounded_support_vectors = 0;  // alpha_i = C_i
   long long cache_hits = 0, cache_misses = 0;
   long long kernel_entries = 0;  // kernel values computed for the cache (the solver's main cost)
+  double mean_active = 0;        // active set size per iteration (shrinking), mean
   WarmStartCounts warm;  // what the warm start changed (zero for a cold start)
   long long workspace_solve = 0;  // SolverWorkspace::lastSolve() after this solve (0: none given)
 

@@ -53,6 +53,7 @@ void BM_TrainCold_svmp(benchmark::State& state) {
   state.counters["SV"] = r.support_vectors;
   state.counters["iterations"] = static_cast<double>(r.iterations);
   state.counters["entries"] = static_cast<double>(r.kernel_entries);
+  state.counters["active"] = r.mean_active;
 }
 
 void BM_TrainCold_libsvm(benchmark::State& state) {
@@ -128,6 +129,7 @@ void BM_TrainWarm_svmp(benchmark::State& state) {
   state.counters["iterations"] = static_cast<double>(r.iterations);
   state.counters["columns"] = static_cast<double>(r.warm.columns);
   state.counters["entries"] = static_cast<double>(r.kernel_entries);
+  state.counters["active"] = r.mean_active;
 }
 
 // The retrain a planner does: the first solve ran in a workspace, which keeps its kernel columns.
@@ -152,6 +154,7 @@ void BM_TrainWarm_retained(benchmark::State& state) {
   state.counters["columns"] = static_cast<double>(r.warm.columns);
   state.counters["reused"] = static_cast<double>(r.warm.reused_columns);
   state.counters["entries"] = static_cast<double>(r.kernel_entries);
+  state.counters["active"] = r.mean_active;
 }
 
 void BM_TrainOvr_svmp(benchmark::State& state) {
