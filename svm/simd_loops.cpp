@@ -190,6 +190,38 @@ SVMP_INLINE void updateGradientImpl(int m, double* yG, const float* Ki, const fl
   for (; t < m; ++t) yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
 }
 
+// updateGradientImpl, then selectIImpl over the updated entries in the same pass (same lanes and
+// tie rule, so the same result as the two loops one after the other).
+template <int L>
+SVMP_INLINE ArgMax updateGradientSelectIImpl(int m, double* yG, const float* Ki, const float* Kj,
+                                             double wi, double wj, const double* up) {
+  using D = typename V<L>::D;
+  const D vwi = splat<L>(wi), vwj = splat<L>(wj), step = splat<L>(L);
+  D best = splat<L>(-kInf), idx = splat<L>(-1), tv = iota<L>(0);
+  int t = 0;
+  for (; t + L <= m; t += L) {
+    const D g = load<L>(yG + t) + (vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t));
+    store<L>(yG + t, g);
+    const D v = load<L>(up + t) - g;
+    const auto better = v > best;
+    best = better ? v : best;
+    idx = better ? tv : idx;
+    tv += step;
+  }
+  ArgMax r{-kInf, -1};
+  reduceLanes<L, true>(best, idx, r.value, r.index);
+  for (; t < m; ++t) {
+    yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
+    const double v = up[t] - yG[t];
+    if (v > r.value) {
+      r.value = v;
+      r.index = t;
+    }
+  }
+  if (r.value == -kInf) r.index = -1;
+  return r;
+}
+
 // Two vectors per step: the exponential is a long dependency chain, two chains hide its latency.
 // Distances accumulate in registers across the d coordinate rows (unit stride in each row).
 template <int L, typename Out>
@@ -297,6 +329,10 @@ SVMP_AVX2 void updateGradientAvx2(int m, double* yG, const float* Ki, const floa
                                   double wj) {
   updateGradientImpl<4>(m, yG, Ki, Kj, wi, wj);
 }
+SVMP_AVX2 ArgMax updateGradientSelectIAvx2(int m, double* yG, const float* Ki, const float* Kj,
+                                           double wi, double wj, const double* up) {
+  return updateGradientSelectIImpl<4>(m, yG, Ki, Kj, wi, wj, up);
+}
 template <typename Out>
 SVMP_AVX2 void rbfColumnAvx2(const double* coords, long stride, int d, const double* z,
                              double neg_gamma, int len, Out* out) {
@@ -386,6 +422,11 @@ SVMP_AVX512 void updateGradientAvx512(int m, double* yG, const float* Ki, const 
                                       double wj) {
   updateGradientImpl<8>(m, yG, Ki, Kj, wi, wj);
 }
+SVMP_AVX512 ArgMax updateGradientSelectIAvx512(int m, double* yG, const float* Ki,
+                                               const float* Kj, double wi, double wj,
+                                               const double* up) {
+  return updateGradientSelectIImpl<8>(m, yG, Ki, Kj, wi, wj, up);
+}
 template <typename Out>
 SVMP_AVX512 void rbfColumnAvx512(const double* coords, long stride, int d, const double* z,
                                  double neg_gamma, int len, Out* out) {
@@ -428,6 +469,13 @@ void updateGradient(int m, double* yG, const float* Ki, const float* Kj, double 
     updateGradientAvx2(m, yG, Ki, Kj, wi, wj);
   else
     updateGradientImpl<2>(m, yG, Ki, Kj, wi, wj);
+}
+
+ArgMax updateGradientSelectI(int m, double* yG, const float* Ki, const float* Kj, double wi,
+                             double wj, const double* up) {
+  if (kHaveAvx512) return updateGradientSelectIAvx512(m, yG, Ki, Kj, wi, wj, up);
+  if (kHaveAvx2) return updateGradientSelectIAvx2(m, yG, Ki, Kj, wi, wj, up);
+  return updateGradientSelectIImpl<2>(m, yG, Ki, Kj, wi, wj, up);
 }
 
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,

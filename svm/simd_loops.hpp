@@ -26,6 +26,9 @@ SelectJ selectJ(int m, const double* low, const double* yG, const double* diag, 
 
 // yG[t] += wi Ki[t] + wj Kj[t]  (G_t += y_t (wi K_ti + wj K_tj) times y_t = +-1)
 void updateGradient(int m, double* yG, const float* Ki, const float* Kj, double wi, double wj);
+// updateGradient, then selectI(m, up, yG) on the result, in one pass over yG.
+ArgMax updateGradientSelectI(int m, double* yG, const float* Ki, const float* Kj, double wi,
+                             double wj, const double* up);
 
 // out[t] = exp(-gamma |z - x_t|^2) for t in [0, len); coords has d rows of stride `stride`,
 // already offset to the first sample.

@@ -137,6 +137,8 @@ class SmoSolver {
   int active_;
   long long kernel_entries_ = 0;
   long long active_sum_ = 0;
+  loops::ArgMax next_i_{0.0, -1};  // selectI's answer for the current active set, if valid
+  bool next_i_valid_ = false;
   bool unshrink_ = false;
   bool shrink_at_start_ = false;
   KernelCache& cache_;
@@ -155,7 +157,8 @@ bool SmoSolver::selectWorkingSet(int& out_i, int& out_j) {
   const double* up = up_penalty_.data();
   const double* low = low_penalty_.data();
   // i = argmax_{t in I_up} -y_t G_t; masks are additive penalties so the loops are branch-free.
-  const loops::ArgMax best_i = loops::selectI(m, up, yG);
+  const loops::ArgMax best_i = next_i_valid_ ? next_i_ : loops::selectI(m, up, yG);
+  next_i_valid_ = false;
   if (best_i.index < 0) return false;
   const int i = best_i.index;
   const double gmax = best_i.value;
@@ -241,12 +244,13 @@ void SmoSolver::update(int i, int j) {
   // G_t += Q_ti dA_i + Q_tj dA_j with Q_ti = y_t y_i K_ti, so y_t G_t += y_i dA_i K_ti + ...
   const double wi = y_[i] * (ai - old_ai);
   const double wj = y_[j] * (aj - old_aj);
-  loops::updateGradient(active_, yG_.data(), Ki, Kj, wi, wj);
-  const double* y = y_.data();
-
   const bool was_upper_i = old_ai >= Ci, was_upper_j = old_aj >= Cj;
   updateMasks(i);
   updateMasks(j);
+  // The next iteration's i comes out of the same pass (valid until shrinking changes the set).
+  next_i_ = loops::updateGradientSelectI(active_, yG_.data(), Ki, Kj, wi, wj, up_penalty_.data());
+  next_i_valid_ = true;
+  const double* y = y_.data();
   // G_bar changes when a multiplier enters or leaves its upper bound; needs the full column.
   for (int k : {i, j}) {
     const bool was_upper = (k == i) ? was_upper_i : was_upper_j;
@@ -267,6 +271,7 @@ bool SmoSolver::beShrunk(int i, double gmax1, double gmax2) const {
 }
 
 void SmoSolver::shrink() {
+  next_i_valid_ = false;
   // gmax1 = max_{I_up} -y G, gmax2 = max_{I_low} y G  (libsvm's do_shrinking)
   double gmax1 = -kInf, gmax2 = -kInf;
   for (int t = 0; t < active_; ++t) {
@@ -297,6 +302,7 @@ void SmoSolver::shrink() {
 
 void SmoSolver::reconstructGradient() {
   if (active_ == n_) return;
+  next_i_valid_ = false;
   for (int t = active_; t < n_; ++t) yG_[t] = y_[t] * (G_bar_[t] - 1.0);
   // w_j = y_j alpha_j for free j (bounded ones are in G_bar already)
   int free_count = 0;
