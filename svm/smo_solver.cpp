@@ -9,6 +9,7 @@
 #include "svm/kernel_cache.hpp"
 #include "svm/kernel_column.hpp"
 #include "svm/simd_loops.hpp"
+#include "svm/smo_parallel.hpp"
 #include "svm/solver_workspace.hpp"
 
 namespace svmp::svm {
@@ -77,7 +78,10 @@ class SmoSolver {
         scratch_(n_),
         up_penalty_(n_),
         low_penalty_(n_),
-        index_(order) {
+        index_(order),
+        part_max_(std::max(1, opt.threads)),
+        part_j_(std::max(1, opt.threads)),
+        part_offset_(std::max(1, opt.threads)) {
     for (int t = 0; t < n_; ++t) {
       y_[t] = y[index_[t]];
       C_[t] = C[index_[t]];
@@ -116,10 +120,46 @@ class SmoSolver {
     int filled = 0;
     float* col = cache_.request(i, len, &filled);
     if (filled < len) {
-      data_.column(i, filled, len, col + filled);
+      parallel::forChunks(len - filled, opt_.threads, opt_.parallel_min_samples,
+                          [&](int b, int e, int) {
+                            data_.column(i, filled + b, filled + e, col + filled + b);
+                          });
       kernel_entries_ += len - filled;
     }
     return col;
+  }
+
+  // The loops of simd_loops.hpp over [0, m), in chunks when the solve has threads.
+  loops::ArgMax selectI(int m) {
+    resetParts();
+    parallel::forChunks(m, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int c) {
+      part_offset_[c] = b;
+      part_max_[c] = loops::selectI(e - b, up_penalty_.data() + b, yG_.data() + b);
+    });
+    return parallel::mergeMax(part_max_, part_offset_);
+  }
+  loops::SelectJ selectJ(int m, const float* Ki, int i, double gmax) {
+    resetParts();
+    parallel::forChunks(m, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int c) {
+      part_offset_[c] = b;
+      part_j_[c] = loops::selectJ(e - b, low_penalty_.data() + b, yG_.data() + b,
+                                  data_.diagonalData() + b, Ki + b, data_.diagonal(i), gmax, kTau);
+    });
+    return parallel::mergeSelectJ(part_j_, part_offset_);
+  }
+  loops::ArgMax updateGradientSelectI(int m, const float* Ki, const float* Kj, double wi, double wj) {
+    resetParts();
+    parallel::forChunks(m, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int c) {
+      part_offset_[c] = b;
+      part_max_[c] = loops::updateGradientSelectI(e - b, yG_.data() + b, Ki + b, Kj + b, wi, wj,
+                                                  up_penalty_.data() + b);
+    });
+    return parallel::mergeMax(part_max_, part_offset_);
+  }
+  void resetParts() {
+    std::fill(part_max_.begin(), part_max_.end(), loops::ArgMax{-kInf, -1});
+    std::fill(part_j_.begin(), part_j_.end(), loops::SelectJ{-kInf, kInf, -1});
+    std::fill(part_offset_.begin(), part_offset_.end(), 0);
   }
 
   bool selectWorkingSet(int& out_i, int& out_j);
@@ -149,23 +189,22 @@ class SmoSolver {
   std::vector<double> up_penalty_, low_penalty_;
   std::vector<int> index_;  // original index of each position
   std::vector<std::pair<int, int>> swaps_;
+  std::vector<loops::ArgMax> part_max_;  // per-chunk results of the threaded loops
+  std::vector<loops::SelectJ> part_j_;
+  std::vector<int> part_offset_;
 };
 
 bool SmoSolver::selectWorkingSet(int& out_i, int& out_j) {
   const int m = active_;
-  const double* yG = yG_.data();
-  const double* up = up_penalty_.data();
-  const double* low = low_penalty_.data();
   // i = argmax_{t in I_up} -y_t G_t; masks are additive penalties so the loops are branch-free.
-  const loops::ArgMax best_i = next_i_valid_ ? next_i_ : loops::selectI(m, up, yG);
+  const loops::ArgMax best_i = next_i_valid_ ? next_i_ : selectI(m);
   next_i_valid_ = false;
   if (best_i.index < 0) return false;
   const int i = best_i.index;
   const double gmax = best_i.value;
   // j = argmin over t in I_low with y_t G_t > -gmax of -(gmax + y_t G_t)^2 / curvature (WSS2)
   const float* Ki = column(i, m);
-  const loops::SelectJ best_j =
-      loops::selectJ(m, low, yG, data_.diagonalData(), Ki, data_.diagonal(i), gmax, kTau);
+  const loops::SelectJ best_j = selectJ(m, Ki, i, gmax);
   if (gmax + best_j.gmax2 < opt_.eps || best_j.j < 0) return false;
   const int j = best_j.j;
   out_i = i;
@@ -248,7 +287,7 @@ void SmoSolver::update(int i, int j) {
   updateMasks(i);
   updateMasks(j);
   // The next iteration's i comes out of the same pass (valid until shrinking changes the set).
-  next_i_ = loops::updateGradientSelectI(active_, yG_.data(), Ki, Kj, wi, wj, up_penalty_.data());
+  next_i_ = updateGradientSelectI(active_, Ki, Kj, wi, wj);
   next_i_valid_ = true;
   const double* y = y_.data();
   // G_bar changes when a multiplier enters or leaves its upper bound; needs the full column.
@@ -258,8 +297,10 @@ void SmoSolver::update(int i, int j) {
     const float* Kk = column(k, n_);
     const double w = (was_upper ? -C_[k] : C_[k]) * y_[k];
     double* Gb = G_bar_.data();
+    parallel::forChunks(n_, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int) {
 #pragma omp simd
-    for (int t = 0; t < n_; ++t) Gb[t] += w * y[t] * static_cast<double>(Kk[t]);
+      for (int t = b; t < e; ++t) Gb[t] += w * y[t] * static_cast<double>(Kk[t]);
+    });
   }
 }
 
@@ -445,6 +486,10 @@ std::string SolverOptions::validate() const {
     msg << "max_iterations must be positive, got " << max_iterations;
   else if (!(cache_mb >= 0.0) || !std::isfinite(cache_mb))
     msg << "cache_mb must be >= 0 and finite, got " << cache_mb;
+  else if (threads < 1 || threads > 1024)
+    msg << "threads must be in [1, 1024], got " << threads;
+  else if (parallel_min_samples < 8)
+    msg << "parallel_min_samples must be >= 8, got " << parallel_min_samples;
   return msg.str();
 }
 

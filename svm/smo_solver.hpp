@@ -26,6 +26,11 @@ struct SolverOptions {
   long max_iterations = 10'000'000;  // reported as SolverStatus::kIterationLimit when reached
   double cache_mb = 100;             // kernel column cache (float entries)
   bool shrinking = true;
+  // Threads inside one solve (OpenMP), used while the active set has at least parallel_min_samples
+  // samples (measured threshold: docs/benchmarks.md). 1 for solves that already run in parallel,
+  // e.g. one-versus-rest across classes.
+  int threads = 1;
+  int parallel_min_samples = 8192;
 
   std::string validate() const;  // "" when OK, else what is wrong
 };

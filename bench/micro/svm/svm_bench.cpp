@@ -56,6 +56,21 @@ void BM_TrainCold_svmp(benchmark::State& state) {
   state.counters["active"] = r.mean_active;
 }
 
+// Threads inside one solve, parallel at every active-set size (to find where it pays).
+void BM_TrainParallel_svmp(benchmark::State& state) {
+  const auto& p = problem(state.range(0), state.range(1));
+  const Eigen::VectorXd y = p.binary();
+  const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), kC);
+  SolverOptions opt;
+  opt.threads = static_cast<int>(state.range(2));
+  opt.parallel_min_samples = 8;
+  SolverResult r;
+  for (auto _ : state) r = solveBinary(p.X, y, C, kernelFor(p), opt);
+  state.counters["objective"] = r.objective;
+  state.counters["iterations"] = static_cast<double>(r.iterations);
+  state.counters["active"] = r.mean_active;
+}
+
 void BM_TrainCold_libsvm(benchmark::State& state) {
   const auto& p = problem(state.range(0), state.range(1));
   const Eigen::VectorXd y = p.binary();
@@ -262,6 +277,14 @@ int main(int argc, char** argv) {
         ->Args({6, 10000})
         ->Args({6, 20000});
   }
+  auto* parallel = benchmark::RegisterBenchmark("BM_TrainParallel/svmp", BM_TrainParallel_svmp)
+                       ->ArgNames({"d", "n", "threads"})
+                       ->Unit(benchmark::kMillisecond)
+                       ->UseRealTime()
+                       ->Iterations(3);
+  for (int d : {2, 6})
+    for (int n : {2000, 5000, 10000, 20000})
+      for (int t : {1, 2}) parallel->Args({d, n, t});
   benchmark::RegisterBenchmark("BM_TrainOvr/svmp/d:6/n:20000", BM_TrainOvr_svmp)
       ->ArgName("threads")
       ->Arg(1)
