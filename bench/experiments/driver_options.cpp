@@ -45,7 +45,10 @@ const char* driverUsage() {
          "              planners build once per run and answer all of them\n"
          "  --checker   fcl (default), fastron-fk or fastron-rbf: plan on a learned proxy checker; every\n"
          "              path is verified on FCL and its invalid stretches replanned (verify and repair)\n"
-         "  --check     print the scenario's summary, validate planners and --set, verify the witness\n";
+         "  --check     print the scenario's summary, validate planners and --set, verify the witness\n"
+         "       svmp-plan --merge SHARD.json... [--json FILE] [--scenario FILE]\n"
+         "  --merge     merge the --json files of shards of one run (seed ranges of scripts/sweep) into that\n"
+         "              run's table and JSON; the scenario is the shards' \"file\" unless --scenario is given\n";
 }
 
 DriverOptions parseDriverOptions(int argc, const char* const* argv) {
@@ -88,11 +91,21 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
       if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || eq == dot + 1)
         throw std::invalid_argument("flag --set: expected PLANNER.KEY=VALUE, got '" + kv + "'");
       o.overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    } else if (flag == "--merge") {
+      while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0) o.merge_files.push_back(argv[++i]);
+      if (o.merge_files.empty()) throw std::invalid_argument("flag --merge: expected shard JSON files");
     } else if (flag == "--check") o.check = true;
     else if (flag == "--help" || flag == "-h") o.help = true;
     else throw std::invalid_argument("unknown flag '" + flag + "'");
   }
-  if (!o.help && o.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
+  if (!o.merge_files.empty())
+    for (int i = 1; i < argc; ++i) {
+      const std::string flag = argv[i];
+      if (flag.rfind("--", 0) == 0 && flag != "--merge" && flag != "--json" && flag != "--scenario")
+        throw std::invalid_argument("flag " + flag + ": not used with --merge (the shards' JSON says how they ran)");
+    }
+  if (!o.help && o.scenario.empty() && o.merge_files.empty())
+    throw std::invalid_argument("flag --scenario is required");
   for (const auto& [flag, path] : {std::pair{"--json", &o.json_path}, std::pair{"--paths", &o.paths_json},
                                    std::pair{"--svg", &o.svg_dir}, std::pair{"--path-dir", &o.paths_dir}})
     if (path->empty() && std::find(argv, argv + argc, std::string(flag)) != argv + argc)

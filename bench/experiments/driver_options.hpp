@@ -24,6 +24,9 @@ struct DriverOptions {
   std::vector<std::pair<std::string, std::string>> overrides;  // ("svmp.sigma", "0.3")
   bool check = false;
   bool help = false;
+  // --merge FILE...: no runs; merge shard JSONs of one sweep into the single run's table and --json
+  // (bench/experiments/run_records.hpp). Only --json and --scenario go with it.
+  std::vector<std::string> merge_files;
 };
 
 // Throws std::invalid_argument naming the flag and the value.
