@@ -104,11 +104,26 @@ run(SWEEP, "merge", sweep)
 with open(os.path.join(sweep, "merged", "thesis_fig3_5.json")) as f:
     check(without_times(json.load(f)) == without_times(expected), "merged again after the rerun: still the single run")
 
-# svmp-plan --merge refuses what is not one run.
+# The Slurm script: one array task per shard; a task runs its shard (here without Slurm, as sbatch would).
+run(SWEEP, "slurm", sweep, "--time", "00:10:00")
+with open(os.path.join(sweep, "sweep.sbatch")) as f:
+    script = f.read()
+check("#SBATCH --array=0-11\n" in script and "#SBATCH --time=00:10:00" in script, f"array script:\n{script}")
+os.remove(os.path.join(sweep, "shards", names[5]))
 with open(os.path.join(sweep, "plan.json")) as f:
     plan = json.load(f)
+task = next(i for i, s in enumerate(plan["shards"]) if s["json"] == "shards/" + names[5])
+subprocess.run(["bash", os.path.join(sweep, "sweep.sbatch")], env={**os.environ, "SLURM_ARRAY_TASK_ID": str(task)},
+               check=True, stdout=subprocess.DEVNULL)
+check(os.path.exists(os.path.join(sweep, "shards", names[5])), "the array task ran its shard")
+check(shard_mtimes(sweep)[names[4]] == after[names[4]], "the array task touched no other shard")
+
+
+# svmp-plan --merge refuses what is not one run.
 def shards_of(planner):  # in seed order
     return [os.path.join(sweep, s["json"]) for s in plan["shards"] if s["planner"] == planner]
+
+
 svmp_shards, prm_shards = shards_of("svmp"), shards_of("prm")
 err = run(DRIVER, "--merge", svmp_shards[0], *svmp_shards[2:], expect=2).stderr
 check("seeds 6..8 are in no shard" in err, f"a gap in the seeds is refused: {err}")
