@@ -99,6 +99,75 @@ std::string listed(const std::set<std::string>& overrides) {
 const char* const kSharedFields[] = {"scenario", "file", "dof", "queries", "random_queries", "threads",
                                      "simplified", "simplifier", "checker"};
 
+// What the shards of one merge add up to, one file at a time.
+struct ShardUnion {
+  json first;                                                     // the first shard: fields all must share
+  std::map<std::string, std::string> override_value;              // "svmp.sigma" -> "0.3"
+  std::vector<std::pair<std::string, std::string>> overrides;      // in order of first appearance
+  std::map<std::string, std::set<std::string>> planner_overrides;  // each planner's own --set values
+  std::vector<PlannerRuns> results;                               // planners in order of first appearance
+  std::set<std::uint64_t> seeds;                                  // the shards' --seed values
+
+  void add(const std::string& file, const std::string& first_file) {
+    const json shard = readJsonFile(file);
+    if (!shard.is_object() || !shard.contains("results") || !shard["results"].is_array())
+      throw std::runtime_error(file + ": not svmp-plan's JSON (no list 'results')");
+    if (first.is_null()) first = shard;
+    for (const char* field : kSharedFields) {
+      if (!shard.contains(field))
+        throw std::runtime_error(file + ": field '" + field + "' missing (written by an svmp-plan without per-run "
+                                 "records? rerun the shard)");
+      if (shard[field] != first[field])
+        throw std::runtime_error(file + ": field '" + field + "' is " + shard[field].dump() + ", but " + first_file +
+                                 " has " + first[field].dump());
+    }
+    seeds.insert(get<std::uint64_t>(shard, "seed", file));
+    const std::set<std::string> shard_overrides = addOverrides(file, list(shard, "overrides", file));
+    const json& shard_results = shard["results"];
+    for (size_t p = 0; p < shard_results.size(); ++p) {
+      const std::string where = file + ": results[" + std::to_string(p) + "]";
+      const std::string planner = get<std::string>(shard_results[p], "planner", where);
+      std::set<std::string> own;
+      for (const std::string& kv : shard_overrides)
+        if (kv.rfind(planner + ".", 0) == 0) own.insert(kv);
+      const auto [known, new_planner] = planner_overrides.emplace(planner, own);
+      if (!new_planner && known->second != own)
+        throw std::runtime_error(where + ": planner '" + planner + "' ran with --set " + listed(own) +
+                                 ", in another shard with " + listed(known->second) +
+                                 " (different parameter values are different runs)");
+      auto runs = std::find_if(results.begin(), results.end(), [&](const PlannerRuns& r) { return r.planner == planner; });
+      if (runs == results.end()) runs = results.insert(results.end(), PlannerRuns{planner, {}});
+      const json& records = list(shard_results[p], "records", where);
+      for (size_t r = 0; r < records.size(); ++r)
+        runs->runs.push_back(recordFromJson(records[r], where + ".records[" + std::to_string(r) + "]"));
+    }
+  }
+
+  // One value per --set key across all shards; returns this shard's "KEY=VALUE" entries.
+  std::set<std::string> addOverrides(const std::string& file, const json& entries) {
+    std::set<std::string> texts;
+    for (const json& kv : entries) {
+      const std::string text = kv.is_string() ? kv.get<std::string>() : "";
+      const size_t eq = text.find('=');
+      if (eq == std::string::npos) throw std::runtime_error(file + ": field 'overrides': bad entry " + kv.dump());
+      const std::string key = text.substr(0, eq), value = text.substr(eq + 1);
+      const auto [it, added] = override_value.emplace(key, value);
+      if (added) overrides.emplace_back(key, value);
+      else if (it->second != value)
+        throw std::runtime_error(file + ": field 'overrides': " + text + ", but another shard has " + key + "=" +
+                                 it->second + " (different parameter values are different runs)");
+      texts.insert(text);
+    }
+    return texts;
+  }
+
+  static const json& list(const json& obj, const std::string& key, const std::string& where) {
+    const auto it = obj.find(key);
+    if (it == obj.end() || !it->is_array()) throw std::runtime_error(where + ": field '" + key + "' is not a list");
+    return *it;
+  }
+};
+
 }  // namespace
 
 std::string runRecordJson(const RunRecord& record) {
@@ -142,60 +211,17 @@ std::string overridesJson(const DriverOptions& options) {
 
 MergedShards mergeShards(const std::vector<std::string>& files, const std::string& scenario_file) {
   if (files.empty()) throw std::runtime_error("flag --merge: no shard files");
-  json first;
-  std::map<std::string, std::string> override_value;              // "svmp.sigma" -> "0.3"
-  std::vector<std::pair<std::string, std::string>> overrides;      // in order of first appearance
-  std::map<std::string, std::set<std::string>> planner_overrides;  // each planner's own --set, per shard
-  std::vector<PlannerRuns> results;
-  std::set<std::uint64_t> shard_seeds;
+  ShardUnion shards;
   for (const std::string& file : files) {
-    const json shard = readJsonFile(file);
-    if (!shard.is_object() || !shard.contains("results"))
-      throw std::runtime_error(file + ": not svmp-plan's JSON (no 'results')");
-    if (first.is_null()) first = shard;
-    for (const char* field : kSharedFields) {
-      if (!shard.contains(field))
-        throw std::runtime_error(file + ": field '" + field + "' missing (written by an svmp-plan without per-run "
-                                 "records? rerun the shard)");
-      if (shard[field] != first[field])
-        throw std::runtime_error(file + ": field '" + field + "' is " + shard[field].dump() + ", but " +
-                                 files.front() + " has " + first[field].dump());
-    }
-    shard_seeds.insert(get<std::uint64_t>(shard, "seed", file));
-    std::set<std::string> shard_overrides;
-    for (const json& kv : get<json>(shard, "overrides", file)) {
-      const std::string text = kv.is_string() ? kv.get<std::string>() : kv.dump();
-      const size_t eq = text.find('=');
-      if (eq == std::string::npos) throw std::runtime_error(file + ": field 'overrides': bad entry " + kv.dump());
-      const std::string key = text.substr(0, eq), value = text.substr(eq + 1);
-      const auto [it, added] = override_value.emplace(key, value);
-      if (added) overrides.emplace_back(key, value);
-      else if (it->second != value)
-        throw std::runtime_error(file + ": field 'overrides': " + text + ", but another shard has " + key + "=" +
-                                 it->second + " (different parameter values are different runs)");
-      shard_overrides.insert(text);
-    }
-    const json& shard_results = shard["results"];
-    if (!shard_results.is_array()) throw std::runtime_error(file + ": field 'results' is not a list");
-    for (size_t p = 0; p < shard_results.size(); ++p) {
-      const std::string where = file + ": results[" + std::to_string(p) + "]";
-      const std::string planner = get<std::string>(shard_results[p], "planner", where);
-      std::set<std::string> own;
-      for (const std::string& kv : shard_overrides)
-        if (kv.rfind(planner + ".", 0) == 0) own.insert(kv);
-      const auto [known, new_planner] = planner_overrides.emplace(planner, own);
-      if (!new_planner && known->second != own)
-        throw std::runtime_error(where + ": planner '" + planner + "' ran with --set " + listed(own) +
-                                 ", in another shard with " + listed(known->second) +
-                                 " (different parameter values are different runs)");
-      auto runs = std::find_if(results.begin(), results.end(), [&](const PlannerRuns& r) { return r.planner == planner; });
-      if (runs == results.end()) runs = results.insert(results.end(), PlannerRuns{planner, {}});
-      const json records = get<json>(shard_results[p], "records", where);
-      for (size_t r = 0; r < records.size(); ++r)
-        runs->runs.push_back(recordFromJson(records[r], where + ".records[" + std::to_string(r) + "]"));
+    try {
+      shards.add(file, files.front());
+    } catch (const json::exception& e) {  // a value of an unexpected kind deeper in the file
+      throw std::runtime_error(file + ": not svmp-plan's JSON: " + e.what());
     }
   }
-  if (get<int>(first, "random_queries", files.front()) > 0 && shard_seeds.size() > 1)
+  const json& first = shards.first;
+  std::vector<PlannerRuns>& results = shards.results;
+  if (get<int>(first, "random_queries", files.front()) > 0 && shards.seeds.size() > 1)
     throw std::runtime_error("flag --merge: the shards drew their --queries from different seeds, so they answer "
                              "different queries and are not one run");
 
@@ -240,7 +266,7 @@ MergedShards mergeShards(const std::vector<std::string>& files, const std::strin
   o.checker = get<std::string>(first, "checker", files.front());
   o.simplify = get<bool>(first, "simplified", files.front());
   o.simplify_svm = get<std::string>(first, "simplifier", files.front()) == "svpp";
-  o.overrides = overrides;
+  o.overrides = shards.overrides;
   if (o.queries > 0) merged.scenario.queries = randomQueries(merged.scenario, o.queries, o.seed);
   if (merged.scenario.queries.size() != get<size_t>(first, "queries", files.front()))
     throw std::runtime_error(file + ": has " + std::to_string(merged.scenario.queries.size()) +
