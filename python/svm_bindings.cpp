@@ -20,9 +20,10 @@ struct Model {
   svm::SolverResult solution;
   std::vector<long> support_indices;  // rows of the training X kept as support vectors, in their order
 
-  // F (and grad F into `grad` when not null) at one point, exact or truncated.
+  // F (and grad F into `grad` when not null) at one point, exact or truncated (a model without support
+  // vectors has no evaluator: F is the bias either way).
   double evaluate(const double* q, double* grad, bool use_truncated) const {
-    if (use_truncated) return grad ? truncated->decisionAndGradient(q, grad) : truncated->decision(q);
+    if (use_truncated && truncated) return grad ? truncated->decisionAndGradient(q, grad) : truncated->decision(q);
     return grad ? model.decisionAndGradient(q, grad) : model.decision(q);
   }
 };
@@ -36,11 +37,11 @@ py::object evaluate(const Model& m, const py::object& x, bool with_gradient, boo
   const DoubleArray points = checkedArray(x, "x", ndim, d);
   const py::ssize_t n = ndim == 1 ? 1 : points.shape(0);
   py::array_t<double> values(n), gradients({n, static_cast<py::ssize_t>(d)});
+  const double* q = points.data();
+  double *value = values.mutable_data(), *grad = with_gradient ? gradients.mutable_data() : nullptr;
   {
     py::gil_scoped_release release;
-    for (py::ssize_t i = 0; i < n; ++i)
-      values.mutable_data()[i] = m.evaluate(points.data() + i * d, with_gradient ? gradients.mutable_data() + i * d : nullptr,
-                                            truncated);
+    for (py::ssize_t i = 0; i < n; ++i) value[i] = m.evaluate(q + i * d, grad ? grad + i * d : nullptr, truncated);
   }
   if (ndim == 1) {
     if (!with_gradient) return py::float_(values.at(0));
