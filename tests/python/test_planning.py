@@ -12,7 +12,7 @@ import pytest
 import svmp
 from conftest import scenario_path
 
-DETERMINISTIC = ["svmp", "prm", "ompl-rrtconnect"]
+DETERMINISTIC = ["svmp", "prm", "ompl-rrtconnect", "ompl-lazyprm", "ompl-fmt"]  # repeat for a seed
 
 
 def dense_recheck(scenario, path, step):
