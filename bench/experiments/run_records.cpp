@@ -221,9 +221,13 @@ MergedShards mergeShards(const std::vector<std::string>& files, const std::strin
   }
   const json& first = shards.first;
   std::vector<PlannerRuns>& results = shards.results;
-  if (get<int>(first, "random_queries", files.front()) > 0 && shards.seeds.size() > 1)
+  // Both are drawn from --seed as a whole: shards with different seeds planned different problems.
+  if (shards.seeds.size() > 1 && get<int>(first, "random_queries", files.front()) > 0)
     throw std::runtime_error("flag --merge: the shards drew their --queries from different seeds, so they answer "
                              "different queries and are not one run");
+  if (shards.seeds.size() > 1 && get<std::string>(first, "checker", files.front()) != "fcl")
+    throw std::runtime_error("flag --merge: the shards trained their " + first["checker"].get<std::string>() +
+                             " proxy from different seeds, so they planned on different checkers and are not one run");
 
   // Each planner's seeds must be one contiguous range without repeats, the same for every planner.
   std::uint64_t lowest = 0, highest = 0;

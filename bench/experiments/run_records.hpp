@@ -27,8 +27,8 @@ struct MergedShards {
 // Reads shard JSON files written by svmp-plan --json and merges them as one run over the union of
 // their seeds. Throws std::runtime_error naming the file, field and value when a file is unreadable or
 // not svmp-plan's JSON, when shards disagree (scenario, dof, threads, checker, simplifier, a planner's
-// --set values), when a planner's seeds overlap or leave a gap, or when planners cover different
-// seeds. `scenario_file` non-empty: load it instead of the shards' "file" (its name must match).
+// --set values), when a planner's seeds overlap or leave a gap, when planners cover different seeds,
+// or when shards with different --seed drew --queries or trained a proxy checker from it. `scenario_file` non-empty: load it instead of the shards' "file" (its name must match).
 MergedShards mergeShards(const std::vector<std::string>& files, const std::string& scenario_file);
 
 }  // namespace svmp::experiments

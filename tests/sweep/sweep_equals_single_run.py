@@ -5,7 +5,7 @@ One svmp-plan run over seeds S..S+N-1 and `scripts/sweep` over the same seeds in
 (the planners whose runs repeat for a seed: svmp, prm, ompl-rrtconnect, ompl-lazyprm, ompl-fmt): the merged JSON has the same per-run
 records and the same aggregates, and the merged table the same rows, apart from wall-clock times. A
 rerun skips finished shards and reruns a missing or truncated one; svmp-plan --merge refuses seeds
-missing or repeated and different parameter values.
+missing or repeated, different parameter values, and shards whose --seed trained different proxies.
 Usage: sweep_equals_single_run.py SOURCE_DIR SVMP_PLAN WORK_DIR
 """
 import json
@@ -139,6 +139,15 @@ run(DRIVER, "--scenario", SCENARIO, "--planners", "svmp", "--seed", "100", "--ru
     "--json", other)
 err = run(DRIVER, "--merge", *svmp_shards, other, expect=2).stderr
 check("svmp.sigma" in err, f"shards with other --set values are refused: {err}")
+proxies = [os.path.join(WORK, f"proxy{seed}.json") for seed in (1, 2)]
+for seed, file in zip((1, 2), proxies):
+    run(DRIVER, "--scenario", SCENARIO, "--planners", "svmp", "--checker", "fastron-rbf", "--seed", str(seed),
+        "--json", file)
+err = run(DRIVER, "--merge", *proxies, expect=2).stderr
+check("proxy from different seeds" in err, f"proxy checkers trained from different seeds are refused: {err}")
+err = run(SWEEP, "plan", os.path.join(WORK, "refused"), "--scenario", SCENARIO, "--", "--checker", "fastron-fk",
+          expect=2).stderr
+check("trained from --seed" in err, f"the sweep refuses a proxy checker: {err}")
 err = run(DRIVER, "--merge", *svmp_shards, "--runs", "3", expect=2).stderr
 check("--runs" in err, f"run flags with --merge are refused: {err}")
 
