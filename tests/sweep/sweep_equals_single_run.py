@@ -2,9 +2,9 @@
 """ctest sweep_equals_single_run: a 4-shard sweep run by GNU parallel and merged gives the single run.
 
 One svmp-plan run over seeds S..S+N-1 and `scripts/sweep` over the same seeds in 4 shards per planner
-(the planners whose runs repeat for a seed: svmp, prm, ompl-rrtconnect, ompl-lazyprm, ompl-fmt): the merged JSON has the same per-run
-records and the same aggregates, and the merged table the same rows, apart from wall-clock times. A
-rerun skips finished shards and reruns a missing or truncated one; svmp-plan --merge refuses seeds
+(the planners whose runs repeat for a seed: svmp, prm, ompl-rrtconnect, ompl-lazyprm, ompl-fmt): the
+merged JSON has the same per-run records and the same aggregates, and the merged table the same rows,
+apart from wall-clock times. A rerun skips finished shards and reruns a missing or truncated one; svmp-plan --merge refuses seeds
 missing or repeated, different parameter values, and shards whose --seed trained different proxies.
 Usage: sweep_equals_single_run.py SOURCE_DIR SVMP_PLAN WORK_DIR
 """
@@ -32,8 +32,9 @@ def check(condition, message):
 
 
 def run(*command, expect=0):
+    """`expect` None: any non-zero status."""
     done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if done.returncode != expect:
+    if (done.returncode == 0) if expect is None else (done.returncode != expect):
         sys.exit(f"{' '.join(command)}: status {done.returncode}, expected {expect}\n{done.stdout}{done.stderr}")
     return done
 
@@ -148,6 +149,15 @@ check("proxy from different seeds" in err, f"proxy checkers trained from differe
 err = run(SWEEP, "plan", os.path.join(WORK, "refused"), "--scenario", SCENARIO, "--", "--checker", "fastron-fk",
           expect=2).stderr
 check("trained from --seed" in err, f"the sweep refuses a proxy checker: {err}")
+# A failing shard fails `local` (naming it, its log holding svmp-plan's error) and the merge.
+failing = os.path.join(WORK, "failing")
+run(SWEEP, "plan", failing, "--scenario", SCENARIO, "--planners", "svmp", "--runs", "2", "--shards", "2",
+    "--param", "svmp.sigma=-1", "--driver", DRIVER)
+err = run(SWEEP, "local", failing, expect=None).stderr
+check("2 shard(s) not finished" in err, f"failed shards are reported: {err}")
+with open(os.path.join(failing, "logs", "thesis_fig3_5_svmp_svmp.sigma=-1_seeds1-1.log")) as f:
+    check("planners.svmp.sigma" in f.read(), "the shard's log holds svmp-plan's error")
+check("not finished" in run(SWEEP, "merge", failing, expect=2).stderr, "merge refuses unfinished shards")
 err = run(DRIVER, "--merge", *svmp_shards, "--runs", "3", expect=2).stderr
 check("--runs" in err, f"run flags with --merge are refused: {err}")
 
