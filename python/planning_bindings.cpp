@@ -43,8 +43,9 @@ std::string parameterText(const py::handle& value) {
   return py::str(value);
 }
 
-Plan plan(const Scenario& s, const std::string& planner, std::uint64_t seed, const py::dict& params, int query,
+Plan plan(const Scenario& s, const std::string& planner, long long seed, const py::dict& params, int query,
           const std::string& checker, double time_limit, int threads, bool simplify) {
+  if (seed < 0 || seed > (1LL << 62)) throw py::value_error("seed is " + std::to_string(seed) + ": must be in [0, 2^62]");
   const int queries = static_cast<int>(s.scenario.queries.size());
   if (query < 0 || query >= queries)
     throw py::value_error("query is " + std::to_string(query) + ": the scenario has " + std::to_string(queries) +
@@ -56,7 +57,7 @@ Plan plan(const Scenario& s, const std::string& planner, std::uint64_t seed, con
   experiments::DriverOptions options;
   options.scenario = s.scenario.path;
   options.planners = {planner};
-  options.seed = seed;
+  options.seed = static_cast<unsigned long>(seed);
   options.threads = threads;
   options.time_limit = time_limit;
   options.checker = checker;
@@ -79,7 +80,7 @@ Plan plan(const Scenario& s, const std::string& planner, std::uint64_t seed, con
   out.planner = planner;
   out.status = planners::planStatusName(r.status);
   out.message = r.message;
-  out.seed = seed;
+  out.seed = static_cast<std::uint64_t>(seed);
   out.solved = r.solved();
   out.certified = r.certified;
   out.path = pointsToArray(r.solved() ? r.path : std::vector<Eigen::VectorXd>{}, s.scenario.robot->dof());

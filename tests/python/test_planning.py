@@ -113,6 +113,8 @@ def test_bad_plan_arguments_raise_value_error(fig35):
         svmp.plan(fig35, "prm", params={"samplez": 10})
     with pytest.raises(ValueError, match="query is 1: the scenario has 1 query"):
         svmp.plan(fig35, "svmp", query=1)
+    with pytest.raises(ValueError, match=r"seed is -1: must be in \[0, 2\^62\]"):
+        svmp.plan(fig35, "svmp", seed=-1)
     with pytest.raises(ValueError, match="checker is 'gjk'"):
         svmp.plan(fig35, "svmp", checker="gjk")
     with pytest.raises(ValueError, match=r"q: expected shape \(2,\), got \(3,\)"):
