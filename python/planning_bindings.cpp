@@ -45,15 +45,18 @@ std::string parameterText(const py::handle& value) {
 
 Plan plan(const Scenario& s, const std::string& planner, long long seed, const py::dict& params, int query,
           const std::string& checker, double time_limit, int threads, bool simplify) {
-  if (seed < 0 || seed > (1LL << 62)) throw py::value_error("seed is " + std::to_string(seed) + ": must be in [0, 2^62]");
+  if (seed < 0 || seed > experiments::kMaxSeed)
+    throw py::value_error("seed is " + std::to_string(seed) + ": must be in [0, 2^62]");
   const int queries = static_cast<int>(s.scenario.queries.size());
   if (query < 0 || query >= queries)
     throw py::value_error("query is " + std::to_string(query) + ": the scenario has " + std::to_string(queries) +
                           " quer" + (queries == 1 ? "y" : "ies"));
-  if (checker != "fcl" && checker != "fastron-fk" && checker != "fastron-rbf")
+  if (!experiments::isCheckerName(checker))
     throw py::value_error("checker is '" + checker + "': expected fcl, fastron-fk or fastron-rbf");
   if (!(time_limit >= 0)) throw py::value_error("time_limit is " + numberText(time_limit) + ": must be >= 0 (0: none)");
-  if (threads < 1 || threads > 1024) throw py::value_error("threads is " + std::to_string(threads) + ": must be in [1, 1024]");
+  if (threads < 1 || threads > experiments::kMaxThreads)
+    throw py::value_error("threads is " + std::to_string(threads) + ": must be in [1, " +
+                          std::to_string(experiments::kMaxThreads) + "]");
   experiments::DriverOptions options;
   options.scenario = s.scenario.path;
   options.planners = {planner};

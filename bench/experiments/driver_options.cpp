@@ -28,6 +28,8 @@ double parseDouble(const std::string& flag, const std::string& value, double min
 
 }  // namespace
 
+bool isCheckerName(const std::string& name) { return name == "fcl" || name == "fastron-fk" || name == "fastron-rbf"; }
+
 const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
          "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify [svpp]]\n"
@@ -67,13 +69,13 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
         if (!name.empty()) o.planners.push_back(name);
       if (o.planners.empty()) throw std::invalid_argument("flag --planners: empty list");
     } else if (flag == "--runs") o.runs = static_cast<int>(parseLong(flag, value(), 1, 100000));
-    else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, 1L << 62));
-    else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, 1024));
+    else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, kMaxSeed));
+    else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, kMaxThreads));
     else if (flag == "--time-limit") o.time_limit = parseDouble(flag, value(), 1e-6, 1e7);
     else if (flag == "--queries") o.queries = static_cast<int>(parseLong(flag, value(), 1, 100000));
     else if (flag == "--checker") {
       o.checker = value();
-      if (o.checker != "fcl" && o.checker != "fastron-fk" && o.checker != "fastron-rbf")
+      if (!isCheckerName(o.checker))
         throw std::invalid_argument("flag --checker: '" + o.checker + "' is not fcl, fastron-fk or fastron-rbf");
     }
     else if (flag == "--json") o.json_path = value();

@@ -6,6 +6,12 @@
 
 namespace svmp::experiments {
 
+// Bounds of --seed and --threads; the Python module checks its arguments against the same.
+inline constexpr long kMaxSeed = 1L << 62;
+inline constexpr int kMaxThreads = 1024;
+// fcl, fastron-fk or fastron-rbf (--checker).
+bool isCheckerName(const std::string& name);
+
 struct DriverOptions {
   std::string scenario;
   std::vector<std::string> planners = {"svmp", "prm"};
