@@ -105,7 +105,7 @@ TEST(Solver, TinyCacheGivesTheSameSolution) {
 // Threads split the loops of every iteration (forced at any size here); the element-wise parts give
 // the same bits, so the solve follows the same path unless selectJ meets an exact-rounding tie.
 TEST(Solver, ThreadsGiveTheSameSolution) {
-  const auto p = makeBallProblem(6, 600, 3, 23);
+  const auto p = makeBallProblem(3, 300, 3, 23);  // small: a busy machine makes each barrier slow
   const Eigen::VectorXd y = p.binary(1);
   const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), kC);
   const Kernel k = Kernel::rbfFromSigma(sigmaFor(p));
