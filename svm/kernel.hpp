@@ -34,6 +34,7 @@ struct Kernel {
 
   // True for the plain RBF kernel, which has the vectorised and truncated fast paths.
   bool isPlainRbf() const { return type == KernelType::kRbf && block == 0; }
+  bool operator==(const Kernel&) const = default;
 
   // "" when the parameters are usable for data of dimension d, else what is wrong.
   std::string validate(int d) const;

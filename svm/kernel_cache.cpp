@@ -38,9 +38,35 @@ void KernelCache::linkNewest(int i) {
 
 void KernelCache::evict(int i) {
   unlink(i);
-  free_ += columns_[i].len;
-  columns_[i].data.reset();
-  columns_[i].len = 0;
+  Column& c = columns_[i];
+  keepSpare(std::move(c.data), c.capacity);
+  c.len = c.capacity = 0;
+}
+
+void KernelCache::keepSpare(std::unique_ptr<float[]> data, int capacity) {
+  if (capacity > 0) spares_.emplace(capacity, std::move(data));
+}
+
+KernelCache::Buffer KernelCache::takeBuffer(int len, int own_capacity) {
+  while (true) {
+    if (auto fit = spares_.lower_bound(len); fit != spares_.end()) {
+      Buffer out{std::move(fit->second), fit->first, false};
+      spares_.erase(fit);
+      return out;
+    }
+    // The caller frees its own buffer after copying from it, so that memory counts as free.
+    if (free_ + own_capacity >= len) break;
+    if (!spares_.empty()) {  // too small for this column; a live column is worth more
+      free_ += spares_.begin()->first;
+      spares_.erase(spares_.begin());
+    } else if (oldest_ >= 0) {
+      evict(oldest_);  // its buffer may fit: look again
+    } else {
+      break;  // capacity_ >= 2n makes this unreachable for the solver's two columns
+    }
+  }
+  free_ -= len;
+  return {std::unique_ptr<float[]>(new float[len]), len, true};
 }
 
 float* KernelCache::request(int i, int len, int* filled) {
@@ -48,12 +74,16 @@ float* KernelCache::request(int i, int len, int* filled) {
   if (c.len > 0) unlink(i);
   if (len > c.len) {
     ++misses_;
-    const long long more = len - c.len;
-    while (free_ < more && oldest_ >= 0) evict(oldest_);
-    std::unique_ptr<float[]> grown(new float[len]);
-    if (c.len > 0) std::memcpy(grown.get(), c.data.get(), sizeof(float) * c.len);
-    c.data = std::move(grown);
-    free_ -= more;
+    if (len > c.capacity) {
+      Buffer grown = takeBuffer(len, c.capacity);
+      if (c.len > 0) std::memcpy(grown.data.get(), c.data.get(), sizeof(float) * c.len);
+      if (grown.fresh)
+        free_ += c.capacity;  // released below
+      else
+        keepSpare(std::move(c.data), c.capacity);
+      c.data = std::move(grown.data);
+      c.capacity = grown.capacity;
+    }
     *filled = c.len;
     c.len = len;
   } else {
@@ -62,6 +92,30 @@ float* KernelCache::request(int i, int len, int* filled) {
   }
   linkNewest(i);
   return c.data.get();
+}
+
+void KernelCache::resize(int n) {
+  for (int i = n; i < size(); ++i) evictColumn(i);
+  for (int i = 0; i < std::min(n, size()); ++i) columns_[i].len = std::min(columns_[i].len, n);
+  columns_.resize(n);
+  const long long at_least = 2LL * n;  // the solver's two columns, as in the constructor
+  if (capacity_ < at_least) {
+    free_ += at_least - capacity_;
+    capacity_ = at_least;
+  }
+}
+
+void KernelCache::evictColumn(int i) {
+  if (columns_[i].len > 0) evict(i);
+}
+
+void KernelCache::clear() {
+  while (oldest_ >= 0) evict(oldest_);
+}
+
+float* KernelCache::cached(int i, int* len) {
+  *len = columns_[i].len;
+  return columns_[i].data.get();
 }
 
 void KernelCache::swapIndex(int i, int j) { swapIndices({{i, j}}); }
@@ -75,6 +129,7 @@ void KernelCache::swapIndices(const std::vector<std::pair<int, int>>& swaps) {
     if (j_cached) unlink(j);
     std::swap(columns_[i].data, columns_[j].data);
     std::swap(columns_[i].len, columns_[j].len);
+    std::swap(columns_[i].capacity, columns_[j].capacity);
     if (columns_[i].len > 0) linkNewest(i);
     if (columns_[j].len > 0) linkNewest(j);
   }
@@ -87,6 +142,8 @@ void KernelCache::swapIndices(const std::vector<std::pair<int, int>>& swaps) {
       if (c.len <= lo || lo == hi) continue;
       if (c.len > hi) {
         std::swap(data[lo], data[hi]);
+      } else if (lo > 0) {
+        c.len = lo;  // entry hi is not cached: keep the prefix (libsvm drops the whole column)
       } else {
         evict(h);
         break;

@@ -7,15 +7,29 @@
 
 namespace svmp::svm {
 
+namespace {
+std::vector<int> identity(Eigen::Index n) {
+  std::vector<int> order(n);
+  for (Eigen::Index i = 0; i < n; ++i) order[i] = static_cast<int>(i);
+  return order;
+}
+}  // namespace
+
 KernelColumns::KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel)
+    : KernelColumns(X, kernel, identity(X.cols())) {}
+
+KernelColumns::KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel,
+                             const std::vector<int>& order)
     : n_(static_cast<int>(X.cols())),
       d_(static_cast<int>(X.rows())),
       kernel_(kernel),
       coords_(static_cast<size_t>(X.rows()) * X.cols()),
       diag_(X.cols()) {
-  for (int i = 0; i < n_; ++i)
-    for (int k = 0; k < d_; ++k) coords_[static_cast<size_t>(k) * n_ + i] = X(k, i);
-  for (int i = 0; i < n_; ++i) diag_[i] = kernel_.value(X.col(i).data(), X.col(i).data(), d_);
+  for (int t = 0; t < n_; ++t) {
+    const double* x = X.col(order[t]).data();
+    for (int k = 0; k < d_; ++k) coords_[static_cast<size_t>(k) * n_ + t] = x[k];
+    diag_[t] = kernel_.value(x, x, d_);
+  }
 }
 
 void KernelColumns::point(int i, double* z) const {

@@ -20,6 +20,8 @@ namespace svmp::svm {
 class KernelColumns {
  public:
   KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel);
+  // Sample order[t] of X at position t (a permutation of the columns of X).
+  KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel, const std::vector<int>& order);
 
   int size() const { return n_; }
   int dim() const { return d_; }

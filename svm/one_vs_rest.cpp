@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <omp.h>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -56,12 +57,16 @@ OneVsRestModel trainOneVsRest(const Eigen::MatrixXd& X, const std::vector<int>& 
   const int workers = std::min(threads, k);
   SolverOptions per_problem = opt;
   std::vector<std::exception_ptr> errors(k);
+  // One workspace per thread: a thread's next class reuses its column cache's memory.
+  std::vector<SolverWorkspace> workspaces(workers);
 #pragma omp parallel for num_threads(workers) schedule(dynamic, 1)
   for (int c = 0; c < k; ++c) {
     try {
       Eigen::VectorXd y, sample_C;
       oneVsRestProblem(labels, out.classes[c], C, class_weight, y, sample_C);
-      out.solutions[c] = solveBinary(X, y, sample_C, kernel, per_problem);
+      out.solutions[c] = solveBinary(X, y, sample_C, kernel, per_problem, nullptr,
+                                     &workspaces[omp_get_thread_num()]);
+      out.solutions[c].workspace_solve = 0;  // the workspaces end here
       out.models[c] = BinaryModel::fromSolution(X, y, out.solutions[c], kernel);
     } catch (...) {
       errors[c] = std::current_exception();

@@ -1,12 +1,16 @@
-// Vectors wider than the baseline ISA are only used inside target("avx2") functions (and in the
+// Vectors wider than the baseline ISA are only used inside target("avx2") / target("avx512f") functions (and in the
 // always-inlined exponential of svm/fast_exp.hpp they call), so no ABI for them is ever used.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 #include "svm/simd_loops.hpp"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <string>
 
 #include "svm/kernel.hpp"
 
@@ -30,6 +34,12 @@ struct V<4> {
   using D = double __attribute__((vector_size(32)));
   using F = float __attribute__((vector_size(16)));
   using I = long long __attribute__((vector_size(32)));
+};
+template <>
+struct V<8> {
+  using D = double __attribute__((vector_size(64)));
+  using F = float __attribute__((vector_size(32)));
+  using I = long long __attribute__((vector_size(64)));
 };
 
 #define SVMP_INLINE inline __attribute__((always_inline))
@@ -86,13 +96,13 @@ SVMP_INLINE void reduceLanes(typename V<L>::D best, typename V<L>::D idx, double
 }
 
 template <int L>
-SVMP_INLINE ArgMax selectIImpl(int m, const double* up, const double* y, const double* G) {
+SVMP_INLINE ArgMax selectIImpl(int m, const double* up, const double* yG) {
   using D = typename V<L>::D;
   D best = splat<L>(-kInf), idx = splat<L>(-1), tv = iota<L>(0);
   const D step = splat<L>(L);
   int t = 0;
   for (; t + L <= m; t += L) {
-    const D v = load<L>(up + t) - load<L>(y + t) * load<L>(G + t);
+    const D v = load<L>(up + t) - load<L>(yG + t);
     const auto better = v > best;
     best = better ? v : best;
     idx = better ? tv : idx;
@@ -101,7 +111,7 @@ SVMP_INLINE ArgMax selectIImpl(int m, const double* up, const double* y, const d
   ArgMax r{-kInf, -1};
   reduceLanes<L, true>(best, idx, r.value, r.index);
   for (; t < m; ++t) {
-    const double v = up[t] - y[t] * G[t];
+    const double v = up[t] - yG[t];
     if (v > r.value) {
       r.value = v;
       r.index = t;
@@ -111,36 +121,11 @@ SVMP_INLINE ArgMax selectIImpl(int m, const double* up, const double* y, const d
   return r;
 }
 
-template <int L>
-SVMP_INLINE SelectJ selectJImpl(int m, const double* low, const double* y, const double* G,
-                                const double* diag, const float* Ki, double kii, double gmax,
-                                double tau) {
-  using D = typename V<L>::D;
-  const D vinf = splat<L>(kInf), vtau = splat<L>(tau), vzero = splat<L>(0.0);
-  const D vgmax = splat<L>(gmax), vkii = splat<L>(kii), step = splat<L>(L);
-  D g2 = splat<L>(-kInf), best = vinf, idx = splat<L>(-1), tv = iota<L>(0);
-  int t = 0;
-  for (; t + L <= m; t += L) {
-    const D yg = load<L>(y + t) * load<L>(G + t);
-    const D lowp = load<L>(low + t);
-    const D c = yg - lowp;
-    g2 = c > g2 ? c : g2;
-    const D diff = vgmax + yg;
-    D quad = vkii + load<L>(diag + t) - 2.0 * load<L>(Ki + t);
-    quad = quad > vzero ? quad : vtau;
-    D obj = -(diff * diff) / quad;
-    obj = diff > vzero ? obj : vinf;
-    obj += lowp;
-    const auto better = obj < best;
-    best = better ? obj : best;
-    idx = better ? tv : idx;
-    tv += step;
-  }
-  SelectJ r{-kInf, kInf, -1};
-  for (int l = 0; l < L; ++l) r.gmax2 = std::max(r.gmax2, g2[l]);
-  reduceLanes<L, false>(best, idx, r.obj_min, r.j);
+// Entries [t, m) of selectJ one at a time, after the vector lanes were reduced into r.
+SVMP_INLINE void selectJTail(int t, int m, const double* low, const double* yG, const double* diag,
+                             const float* Ki, double kii, double gmax, double tau, SelectJ& r) {
   for (; t < m; ++t) {
-    const double yg = y[t] * G[t];
+    const double yg = yG[t];
     r.gmax2 = std::max(r.gmax2, yg - low[t]);
     const double diff = gmax + yg;
     double quad = kii + diag[t] - 2.0 * static_cast<double>(Ki[t]);
@@ -153,20 +138,88 @@ SVMP_INLINE SelectJ selectJImpl(int m, const double* low, const double* y, const
     }
   }
   if (r.obj_min == kInf) r.j = -1;
+}
+
+// The WSS2 objective -(gmax + y_t G_t)^2 / quad_t is compared as a fraction (a^2 qb > b^2 qa), not
+// divided: a vector division per entry made this loop the most expensive of an iteration.
+template <int L>
+SVMP_INLINE SelectJ selectJImpl(int m, const double* low, const double* yG, const double* diag,
+                                const float* Ki, double kii, double gmax, double tau) {
+  using D = typename V<L>::D;
+  const D vinf = splat<L>(kInf), vtau = splat<L>(tau), vzero = splat<L>(0.0);
+  const D vgmax = splat<L>(gmax), vkii = splat<L>(kii), step = splat<L>(L);
+  const D vminus = splat<L>(-1.0);
+  D g2 = splat<L>(-kInf), best_num = vzero, best_quad = splat<L>(1.0), idx = vminus;
+  D tv = iota<L>(0);
+  int t = 0;
+  for (; t + L <= m; t += L) {
+    const D yg = load<L>(yG + t);
+    const D lowp = load<L>(low + t);
+    const D c = yg - lowp;
+    g2 = c > g2 ? c : g2;
+    const D diff = vgmax + yg;
+    D quad = vkii + load<L>(diag + t) - 2.0 * load<L>(Ki + t);
+    quad = quad > vzero ? quad : vtau;
+    // Lanes outside I_low or with diff <= 0 get a negative numerator, which never wins; one select
+    // per condition (GCC scalarises a conjunction of vector masks).
+    D num = diff > vzero ? diff * diff : vminus;
+    num = lowp == vzero ? num : vminus;
+    const auto better = num * best_quad > best_num * quad;
+    best_num = better ? num : best_num;
+    best_quad = better ? quad : best_quad;
+    idx = better ? tv : idx;
+    tv += step;
+  }
+  D best = -(best_num / best_quad);
+  best = idx < vzero ? vinf : best;
+  SelectJ r{-kInf, kInf, -1};
+  for (int l = 0; l < L; ++l) r.gmax2 = std::max(r.gmax2, g2[l]);
+  reduceLanes<L, false>(best, idx, r.obj_min, r.j);
+  selectJTail(t, m, low, yG, diag, Ki, kii, gmax, tau, r);
   return r;
 }
 
 template <int L>
-SVMP_INLINE void updateGradientImpl(int m, double* G, const double* y, const float* Ki,
-                                    const float* Kj, double wi, double wj) {
+SVMP_INLINE void updateGradientImpl(int m, double* yG, const float* Ki, const float* Kj, double wi,
+                                    double wj) {
   using D = typename V<L>::D;
   const D vwi = splat<L>(wi), vwj = splat<L>(wj);
   int t = 0;
   for (; t + L <= m; t += L)
-    store<L>(G + t,
-             load<L>(G + t) + load<L>(y + t) * (vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t)));
-  for (; t < m; ++t)
-    G[t] += y[t] * (wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]));
+    store<L>(yG + t, load<L>(yG + t) + (vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t)));
+  for (; t < m; ++t) yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
+}
+
+// updateGradientImpl, then selectIImpl over the updated entries in the same pass (same lanes and
+// tie rule, so the same result as the two loops one after the other).
+template <int L>
+SVMP_INLINE ArgMax updateGradientSelectIImpl(int m, double* yG, const float* Ki, const float* Kj,
+                                             double wi, double wj, const double* up) {
+  using D = typename V<L>::D;
+  const D vwi = splat<L>(wi), vwj = splat<L>(wj), step = splat<L>(L);
+  D best = splat<L>(-kInf), idx = splat<L>(-1), tv = iota<L>(0);
+  int t = 0;
+  for (; t + L <= m; t += L) {
+    const D g = load<L>(yG + t) + (vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t));
+    store<L>(yG + t, g);
+    const D v = load<L>(up + t) - g;
+    const auto better = v > best;
+    best = better ? v : best;
+    idx = better ? tv : idx;
+    tv += step;
+  }
+  ArgMax r{-kInf, -1};
+  reduceLanes<L, true>(best, idx, r.value, r.index);
+  for (; t < m; ++t) {
+    yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
+    const double v = up[t] - yG[t];
+    if (v > r.value) {
+      r.value = v;
+      r.index = t;
+    }
+  }
+  if (r.value == -kInf) r.index = -1;
+  return r;
 }
 
 // Two vectors per step: the exponential is a long dependency chain, two chains hide its latency.
@@ -265,17 +318,20 @@ SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const do
 
 #define SVMP_AVX2 __attribute__((target("avx2")))
 
-SVMP_AVX2 ArgMax selectIAvx2(int m, const double* up, const double* y, const double* G) {
-  return selectIImpl<4>(m, up, y, G);
+SVMP_AVX2 ArgMax selectIAvx2(int m, const double* up, const double* yG) {
+  return selectIImpl<4>(m, up, yG);
 }
-SVMP_AVX2 SelectJ selectJAvx2(int m, const double* low, const double* y, const double* G,
-                              const double* diag, const float* Ki, double kii, double gmax,
-                              double tau) {
-  return selectJImpl<4>(m, low, y, G, diag, Ki, kii, gmax, tau);
+SVMP_AVX2 SelectJ selectJAvx2(int m, const double* low, const double* yG, const double* diag,
+                              const float* Ki, double kii, double gmax, double tau) {
+  return selectJImpl<4>(m, low, yG, diag, Ki, kii, gmax, tau);
 }
-SVMP_AVX2 void updateGradientAvx2(int m, double* G, const double* y, const float* Ki,
-                                  const float* Kj, double wi, double wj) {
-  updateGradientImpl<4>(m, G, y, Ki, Kj, wi, wj);
+SVMP_AVX2 void updateGradientAvx2(int m, double* yG, const float* Ki, const float* Kj, double wi,
+                                  double wj) {
+  updateGradientImpl<4>(m, yG, Ki, Kj, wi, wj);
+}
+SVMP_AVX2 ArgMax updateGradientSelectIAvx2(int m, double* yG, const float* Ki, const float* Kj,
+                                           double wi, double wj, const double* up) {
+  return updateGradientSelectIImpl<4>(m, yG, Ki, Kj, wi, wj, up);
 }
 template <typename Out>
 SVMP_AVX2 void rbfColumnAvx2(const double* coords, long stride, int d, const double* z,
@@ -306,33 +362,127 @@ SVMP_AVX2 double truncatedRbfSumAvx2(const BlockedSupportVectors& sv, const doub
               : truncatedRbfSumDispatch<4, false>(sv, q, gamma, r2, grad);
 }
 
+#define SVMP_AVX512 __attribute__((target("avx512f,fma")))
+
+SVMP_AVX512 ArgMax selectIAvx512(int m, const double* up, const double* yG) {
+  return selectIImpl<8>(m, up, yG);
+}
+// GCC 12 warns about _mm512_undefined_pd inside its own intrinsics at -O3 (a known false positive).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+// selectJImpl with AVX-512 intrinsics: GCC 12 turns the vector-extension selects of selectJImpl<8>
+// into one scalar compare per lane (3x slower than AVX2); mask registers keep them in vectors.
+SVMP_AVX512 SelectJ selectJAvx512(int m, const double* low, const double* yG, const double* diag,
+                                  const float* Ki, double kii, double gmax, double tau) {
+  const __m512d vzero = _mm512_setzero_pd(), vtau = _mm512_set1_pd(tau);
+  const __m512d vgmax = _mm512_set1_pd(gmax), vkii = _mm512_set1_pd(kii);
+  const __m512d vtwo = _mm512_set1_pd(2.0), step = _mm512_set1_pd(8.0);
+  __m512d g2 = _mm512_set1_pd(-kInf), best_num = vzero, best_quad = _mm512_set1_pd(1.0);
+  __m512d idx = _mm512_set1_pd(-1.0), tv = _mm512_setr_pd(0, 1, 2, 3, 4, 5, 6, 7);
+  int t = 0;
+  for (; t + 8 <= m; t += 8) {
+    const __m512d yg = _mm512_loadu_pd(yG + t);
+    const __m512d lowp = _mm512_loadu_pd(low + t);
+    g2 = _mm512_max_pd(g2, _mm512_sub_pd(yg, lowp));
+    const __m512d diff = _mm512_add_pd(vgmax, yg);
+    const __m512d kit = _mm512_cvtps_pd(_mm256_loadu_ps(Ki + t));
+    __m512d quad = _mm512_fnmadd_pd(vtwo, kit, _mm512_add_pd(vkii, _mm512_loadu_pd(diag + t)));
+    quad = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(quad, vzero, _CMP_GT_OQ), vtau, quad);
+    const __m512d num = _mm512_mul_pd(diff, diff);
+    const __mmask8 better =
+        _mm512_cmp_pd_mask(diff, vzero, _CMP_GT_OQ) & _mm512_cmp_pd_mask(lowp, vzero, _CMP_EQ_OQ) &
+        _mm512_cmp_pd_mask(_mm512_mul_pd(num, best_quad), _mm512_mul_pd(best_num, quad),
+                           _CMP_GT_OQ);
+    best_num = _mm512_mask_blend_pd(better, best_num, num);
+    best_quad = _mm512_mask_blend_pd(better, best_quad, quad);
+    idx = _mm512_mask_blend_pd(better, idx, tv);
+    tv = _mm512_add_pd(tv, step);
+  }
+  alignas(64) double lane_num[8], lane_quad[8], lane_idx[8], lane_g2[8];
+  _mm512_store_pd(lane_num, best_num);
+  _mm512_store_pd(lane_quad, best_quad);
+  _mm512_store_pd(lane_idx, idx);
+  _mm512_store_pd(lane_g2, g2);
+  SelectJ r{-kInf, kInf, -1};
+  for (int l = 0; l < 8; ++l) {
+    r.gmax2 = std::max(r.gmax2, lane_g2[l]);
+    if (lane_idx[l] < 0) continue;
+    const double obj = -(lane_num[l] / lane_quad[l]);
+    const int index = static_cast<int>(lane_idx[l]);
+    if (obj < r.obj_min || (obj == r.obj_min && index < r.j)) {
+      r.obj_min = obj;
+      r.j = index;
+    }
+  }
+  selectJTail(t, m, low, yG, diag, Ki, kii, gmax, tau, r);
+  return r;
+}
+#pragma GCC diagnostic pop
+SVMP_AVX512 void updateGradientAvx512(int m, double* yG, const float* Ki, const float* Kj, double wi,
+                                      double wj) {
+  updateGradientImpl<8>(m, yG, Ki, Kj, wi, wj);
+}
+SVMP_AVX512 ArgMax updateGradientSelectIAvx512(int m, double* yG, const float* Ki,
+                                               const float* Kj, double wi, double wj,
+                                               const double* up) {
+  return updateGradientSelectIImpl<8>(m, yG, Ki, Kj, wi, wj, up);
+}
+template <typename Out>
+SVMP_AVX512 void rbfColumnAvx512(const double* coords, long stride, int d, const double* z,
+                                 double neg_gamma, int len, Out* out) {
+  rbfColumnImpl<8>(coords, stride, d, z, neg_gamma, len, out);
+}
+SVMP_AVX512 double truncatedRbfSumAvx512(const BlockedSupportVectors& sv, const double* q,
+                                         double gamma, double r2, double* grad) {
+  return grad ? truncatedRbfSumDispatch<8, true>(sv, q, gamma, r2, grad)
+              : truncatedRbfSumDispatch<8, false>(sv, q, gamma, r2, grad);
+}
+
 const bool kHaveAvx2 = __builtin_cpu_supports("avx2");
+// SVMP_SIMD=avx2 keeps a machine with AVX-512 on the 4-lane loops (to measure what 8 lanes give).
+const bool kHaveAvx512 = __builtin_cpu_supports("avx512f") && [] {
+  const char* v = std::getenv("SVMP_SIMD");
+  return v == nullptr || std::string(v) != "avx2";
+}();
 
 }  // namespace
 
 bool usingAvx2() { return kHaveAvx2; }
+bool usingAvx512() { return kHaveAvx512; }
 
-ArgMax selectI(int m, const double* up, const double* y, const double* G) {
-  return kHaveAvx2 ? selectIAvx2(m, up, y, G) : selectIImpl<2>(m, up, y, G);
+ArgMax selectI(int m, const double* up, const double* yG) {
+  if (kHaveAvx512) return selectIAvx512(m, up, yG);
+  return kHaveAvx2 ? selectIAvx2(m, up, yG) : selectIImpl<2>(m, up, yG);
 }
 
-SelectJ selectJ(int m, const double* low, const double* y, const double* G, const double* diag,
-                const float* Ki, double kii, double gmax, double tau) {
-  return kHaveAvx2 ? selectJAvx2(m, low, y, G, diag, Ki, kii, gmax, tau)
-                   : selectJImpl<2>(m, low, y, G, diag, Ki, kii, gmax, tau);
+SelectJ selectJ(int m, const double* low, const double* yG, const double* diag, const float* Ki,
+                double kii, double gmax, double tau) {
+  if (kHaveAvx512) return selectJAvx512(m, low, yG, diag, Ki, kii, gmax, tau);
+  return kHaveAvx2 ? selectJAvx2(m, low, yG, diag, Ki, kii, gmax, tau)
+                   : selectJImpl<2>(m, low, yG, diag, Ki, kii, gmax, tau);
 }
 
-void updateGradient(int m, double* G, const double* y, const float* Ki, const float* Kj, double wi,
-                    double wj) {
-  if (kHaveAvx2)
-    updateGradientAvx2(m, G, y, Ki, Kj, wi, wj);
+void updateGradient(int m, double* yG, const float* Ki, const float* Kj, double wi, double wj) {
+  if (kHaveAvx512)
+    updateGradientAvx512(m, yG, Ki, Kj, wi, wj);
+  else if (kHaveAvx2)
+    updateGradientAvx2(m, yG, Ki, Kj, wi, wj);
   else
-    updateGradientImpl<2>(m, G, y, Ki, Kj, wi, wj);
+    updateGradientImpl<2>(m, yG, Ki, Kj, wi, wj);
+}
+
+ArgMax updateGradientSelectI(int m, double* yG, const float* Ki, const float* Kj, double wi,
+                             double wj, const double* up) {
+  if (kHaveAvx512) return updateGradientSelectIAvx512(m, yG, Ki, Kj, wi, wj, up);
+  if (kHaveAvx2) return updateGradientSelectIAvx2(m, yG, Ki, Kj, wi, wj, up);
+  return updateGradientSelectIImpl<2>(m, yG, Ki, Kj, wi, wj, up);
 }
 
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
                float* out) {
-  if (kHaveAvx2)
+  if (kHaveAvx512)
+    rbfColumnAvx512(coords, stride, d, z, neg_gamma, len, out);
+  else if (kHaveAvx2)
     rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
   else
     rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
@@ -340,7 +490,9 @@ void rbfColumn(const double* coords, long stride, int d, const double* z, double
 
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
                double* out) {
-  if (kHaveAvx2)
+  if (kHaveAvx512)
+    rbfColumnAvx512(coords, stride, d, z, neg_gamma, len, out);
+  else if (kHaveAvx2)
     rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
   else
     rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
@@ -352,6 +504,7 @@ namespace svmp::svm::loops {
 
 double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double gamma, double r2,
                        double* grad) {
+  if (kHaveAvx512) return truncatedRbfSumAvx512(sv, q, gamma, r2, grad);
   if (kHaveAvx2) return truncatedRbfSumAvx2(sv, q, gamma, r2, grad);
   return grad ? truncatedRbfSumDispatch<2, true>(sv, q, gamma, r2, grad)
               : truncatedRbfSumDispatch<2, false>(sv, q, gamma, r2, grad);

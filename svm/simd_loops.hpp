@@ -1,7 +1,7 @@
 // The O(n) loops of one SMO iteration, the RBF kernel column and the truncated RBF sum, vectorised
-// and dispatched at run time to AVX2 (4 lanes) or baseline SSE2 (2 lanes). Working-set selection is
-// WSS2 of Fan, Chen, Lin, JMLR 6 (2005); the gradient update is libsvm's (Chang & Lin 2011,
-// sec. 4.1).
+// and dispatched at run time to AVX-512 (8 lanes), AVX2 (4 lanes) or baseline SSE2 (2 lanes);
+// SVMP_SIMD=avx2 in the environment caps them at AVX2. Working-set selection is WSS2 of Fan, Chen,
+// Lin, JMLR 6 (2005); the gradient update is libsvm's (Chang & Lin 2011, sec. 4.1).
 #pragma once
 
 namespace svmp::svm::loops {
@@ -11,8 +11,9 @@ struct ArgMax {
   int index;  // -1 when no entry qualifies
 };
 
-// max_t up[t] - y[t] G[t] (up[t] is 0 for t in I_up, -inf otherwise): the WSS "i".
-ArgMax selectI(int m, const double* up, const double* y, const double* G);
+// The solver keeps yG[t] = y_t G_t (labels +-1), so no loop needs the labels themselves.
+// max_t up[t] - yG[t] (up[t] is 0 for t in I_up, -inf otherwise): the WSS "i".
+ArgMax selectI(int m, const double* up, const double* yG);
 
 struct SelectJ {
   double gmax2;    // max_{t in I_low} y_t G_t
@@ -20,12 +21,14 @@ struct SelectJ {
   int j;
 };
 // low[t] is 0 for t in I_low, +inf otherwise; tau replaces non-positive curvature.
-SelectJ selectJ(int m, const double* low, const double* y, const double* G, const double* diag,
-                const float* Ki, double kii, double gmax, double tau);
+SelectJ selectJ(int m, const double* low, const double* yG, const double* diag, const float* Ki,
+                double kii, double gmax, double tau);
 
-// G[t] += y[t] (wi Ki[t] + wj Kj[t])
-void updateGradient(int m, double* G, const double* y, const float* Ki, const float* Kj, double wi,
-                    double wj);
+// yG[t] += wi Ki[t] + wj Kj[t]  (G_t += y_t (wi K_ti + wj K_tj) times y_t = +-1)
+void updateGradient(int m, double* yG, const float* Ki, const float* Kj, double wi, double wj);
+// updateGradient, then selectI(m, up, yG) on the result, in one pass over yG.
+ArgMax updateGradientSelectI(int m, double* yG, const float* Ki, const float* Kj, double wi,
+                             double wj, const double* up);
 
 // out[t] = exp(-gamma |z - x_t|^2) for t in [0, len); coords has d rows of stride `stride`,
 // already offset to the first sample.
@@ -50,5 +53,6 @@ double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double 
                        double* grad);
 
 bool usingAvx2();
+bool usingAvx512();
 
 }  // namespace svmp::svm::loops

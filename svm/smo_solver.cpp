@@ -9,6 +9,8 @@
 #include "svm/kernel_cache.hpp"
 #include "svm/kernel_column.hpp"
 #include "svm/simd_loops.hpp"
+#include "svm/smo_parallel.hpp"
+#include "svm/solver_workspace.hpp"
 
 namespace svmp::svm {
 
@@ -60,42 +62,53 @@ void validateProblem(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const E
 // Solver state in the shrinking permutation: samples [0, active_) are active.
 class SmoSolver {
  public:
-  SmoSolver(KernelColumns& data, const Eigen::VectorXd& y, const Eigen::VectorXd& C,
-            const SolverOptions& opt)
+  // Sample order[t] at position t; data and cache are laid out the same way.
+  SmoSolver(KernelColumns& data, KernelCache& cache, const std::vector<int>& order,
+            const Eigen::VectorXd& y, const Eigen::VectorXd& C, const SolverOptions& opt)
       : data_(data),
         opt_(opt),
         n_(data.size()),
         active_(n_),
-        cache_(n_, opt.cache_mb),
-        y_(y.data(), y.data() + n_),
-        C_(C.data(), C.data() + n_),
+        cache_(cache),
+        y_(n_),
+        C_(n_),
         alpha_(n_, 0.0),
-        G_(n_, -1.0),
+        yG_(n_),
         G_bar_(n_, 0.0),
         scratch_(n_),
         up_penalty_(n_),
         low_penalty_(n_),
-        index_(n_) {
-    for (int i = 0; i < n_; ++i) index_[i] = i;
+        index_(order),
+        part_max_(std::max(1, opt.threads)),
+        part_j_(std::max(1, opt.threads)),
+        part_offset_(std::max(1, opt.threads)) {
+    for (int t = 0; t < n_; ++t) {
+      y_[t] = y[index_[t]];
+      C_[t] = C[index_[t]];
+      yG_[t] = -y_[t];  // G = Q alpha - e at alpha = 0
+    }
   }
 
   // A warm start has an accurate gradient from the start, so shrinking may begin at once: the
   // kernel columns are then computed over the active set only (libsvm waits 1000 iterations).
+  // Vectors in sample order.
   void setStart(const Eigen::VectorXd& alpha, const Eigen::VectorXd& G, const Eigen::VectorXd& Gb) {
     shrink_at_start_ = true;
-    for (int i = 0; i < n_; ++i) {
-      alpha_[i] = alpha[i];
-      G_[i] = G[i];
-      G_bar_[i] = Gb[i];
+    for (int t = 0; t < n_; ++t) {
+      alpha_[t] = alpha[index_[t]];
+      yG_[t] = y_[t] * G[index_[t]];
+      G_bar_[t] = Gb[index_[t]];
     }
   }
 
   SolverResult run();
+  const std::vector<int>& order() const { return index_; }
 
  private:
   bool isUpper(int i) const { return alpha_[i] >= C_[i]; }
   bool isLower(int i) const { return alpha_[i] <= 0.0; }
   bool isFree(int i) const { return !isUpper(i) && !isLower(i); }
+  double gradient(int i) const { return y_[i] * yG_[i]; }
   bool inUp(int i) const { return y_[i] > 0 ? !isUpper(i) : !isLower(i); }
   bool inLow(int i) const { return y_[i] > 0 ? !isLower(i) : !isUpper(i); }
   void updateMasks(int i) {
@@ -106,8 +119,47 @@ class SmoSolver {
   const float* column(int i, int len) {
     int filled = 0;
     float* col = cache_.request(i, len, &filled);
-    if (filled < len) data_.column(i, filled, len, col + filled);
+    if (filled < len) {
+      parallel::forChunks(len - filled, opt_.threads, opt_.parallel_min_samples,
+                          [&](int b, int e, int) {
+                            data_.column(i, filled + b, filled + e, col + filled + b);
+                          });
+      kernel_entries_ += len - filled;
+    }
     return col;
+  }
+
+  // The loops of simd_loops.hpp over [0, m), in chunks when the solve has threads.
+  loops::ArgMax selectI(int m) {
+    resetParts();
+    parallel::forChunks(m, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int c) {
+      part_offset_[c] = b;
+      part_max_[c] = loops::selectI(e - b, up_penalty_.data() + b, yG_.data() + b);
+    });
+    return parallel::mergeMax(part_max_, part_offset_);
+  }
+  loops::SelectJ selectJ(int m, const float* Ki, int i, double gmax) {
+    resetParts();
+    parallel::forChunks(m, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int c) {
+      part_offset_[c] = b;
+      part_j_[c] = loops::selectJ(e - b, low_penalty_.data() + b, yG_.data() + b,
+                                  data_.diagonalData() + b, Ki + b, data_.diagonal(i), gmax, kTau);
+    });
+    return parallel::mergeSelectJ(part_j_, part_offset_);
+  }
+  loops::ArgMax updateGradientSelectI(int m, const float* Ki, const float* Kj, double wi, double wj) {
+    resetParts();
+    parallel::forChunks(m, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int c) {
+      part_offset_[c] = b;
+      part_max_[c] = loops::updateGradientSelectI(e - b, yG_.data() + b, Ki + b, Kj + b, wi, wj,
+                                                  up_penalty_.data() + b);
+    });
+    return parallel::mergeMax(part_max_, part_offset_);
+  }
+  void resetParts() {
+    std::fill(part_max_.begin(), part_max_.end(), loops::ArgMax{-kInf, -1});
+    std::fill(part_j_.begin(), part_j_.end(), loops::SelectJ{-kInf, kInf, -1});
+    std::fill(part_offset_.begin(), part_offset_.end(), 0);
   }
 
   bool selectWorkingSet(int& out_i, int& out_j);
@@ -123,31 +175,36 @@ class SmoSolver {
   const SolverOptions& opt_;
   int n_;
   int active_;
+  long long kernel_entries_ = 0;
+  long long active_sum_ = 0;
+  loops::ArgMax next_i_{0.0, -1};  // selectI's answer for the current active set, if valid
+  bool next_i_valid_ = false;
   bool unshrink_ = false;
   bool shrink_at_start_ = false;
-  KernelCache cache_;
-  std::vector<double> y_, C_, alpha_, G_, G_bar_, scratch_;
+  KernelCache& cache_;
+  // y_t G_t rather than G_t (y_t = +-1): the gradient update then needs no labels, and the
+  // selection loops read one array less.
+  std::vector<double> y_, C_, alpha_, yG_, G_bar_, scratch_;
   // I_up / I_low (Keerthi et al.) as additive penalties: 0 when in the set, -inf / +inf when not.
   std::vector<double> up_penalty_, low_penalty_;
   std::vector<int> index_;  // original index of each position
   std::vector<std::pair<int, int>> swaps_;
+  std::vector<loops::ArgMax> part_max_;  // per-chunk results of the threaded loops
+  std::vector<loops::SelectJ> part_j_;
+  std::vector<int> part_offset_;
 };
 
 bool SmoSolver::selectWorkingSet(int& out_i, int& out_j) {
   const int m = active_;
-  const double* y = y_.data();
-  const double* G = G_.data();
-  const double* up = up_penalty_.data();
-  const double* low = low_penalty_.data();
   // i = argmax_{t in I_up} -y_t G_t; masks are additive penalties so the loops are branch-free.
-  const loops::ArgMax best_i = loops::selectI(m, up, y, G);
+  const loops::ArgMax best_i = next_i_valid_ ? next_i_ : selectI(m);
+  next_i_valid_ = false;
   if (best_i.index < 0) return false;
   const int i = best_i.index;
   const double gmax = best_i.value;
   // j = argmin over t in I_low with y_t G_t > -gmax of -(gmax + y_t G_t)^2 / curvature (WSS2)
   const float* Ki = column(i, m);
-  const loops::SelectJ best_j =
-      loops::selectJ(m, low, y, G, data_.diagonalData(), Ki, data_.diagonal(i), gmax, kTau);
+  const loops::SelectJ best_j = selectJ(m, Ki, i, gmax);
   if (gmax + best_j.gmax2 < opt_.eps || best_j.j < 0) return false;
   const int j = best_j.j;
   out_i = i;
@@ -167,7 +224,7 @@ void SmoSolver::update(int i, int j) {
   if (y_[i] != y_[j]) {
     double quad = data_.diagonal(i) + data_.diagonal(j) - 2.0 * kij;
     if (quad <= 0) quad = kTau;
-    const double delta = (-G_[i] - G_[j]) / quad;
+    const double delta = (-gradient(i) - gradient(j)) / quad;
     const double diff = ai - aj;
     ai += delta;
     aj += delta;
@@ -196,7 +253,7 @@ void SmoSolver::update(int i, int j) {
   } else {
     double quad = data_.diagonal(i) + data_.diagonal(j) - 2.0 * kij;
     if (quad <= 0) quad = kTau;
-    const double delta = (G_[i] - G_[j]) / quad;
+    const double delta = (gradient(i) - gradient(j)) / quad;
     const double sum = ai + aj;
     ai -= delta;
     aj += delta;
@@ -223,15 +280,16 @@ void SmoSolver::update(int i, int j) {
       }
     }
   }
-  // G_t += Q_ti dA_i + Q_tj dA_j with Q_ti = y_t y_i K_ti.
+  // G_t += Q_ti dA_i + Q_tj dA_j with Q_ti = y_t y_i K_ti, so y_t G_t += y_i dA_i K_ti + ...
   const double wi = y_[i] * (ai - old_ai);
   const double wj = y_[j] * (aj - old_aj);
-  loops::updateGradient(active_, G_.data(), y_.data(), Ki, Kj, wi, wj);
-  const double* y = y_.data();
-
   const bool was_upper_i = old_ai >= Ci, was_upper_j = old_aj >= Cj;
   updateMasks(i);
   updateMasks(j);
+  // The next iteration's i comes out of the same pass (valid until shrinking changes the set).
+  next_i_ = updateGradientSelectI(active_, Ki, Kj, wi, wj);
+  next_i_valid_ = true;
+  const double* y = y_.data();
   // G_bar changes when a multiplier enters or leaves its upper bound; needs the full column.
   for (int k : {i, j}) {
     const bool was_upper = (k == i) ? was_upper_i : was_upper_j;
@@ -239,22 +297,26 @@ void SmoSolver::update(int i, int j) {
     const float* Kk = column(k, n_);
     const double w = (was_upper ? -C_[k] : C_[k]) * y_[k];
     double* Gb = G_bar_.data();
+    parallel::forChunks(n_, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int) {
 #pragma omp simd
-    for (int t = 0; t < n_; ++t) Gb[t] += w * y[t] * static_cast<double>(Kk[t]);
+      for (int t = b; t < e; ++t) Gb[t] += w * y[t] * static_cast<double>(Kk[t]);
+    });
   }
 }
 
 bool SmoSolver::beShrunk(int i, double gmax1, double gmax2) const {
-  if (isUpper(i)) return y_[i] > 0 ? -G_[i] > gmax1 : -G_[i] > gmax2;
-  if (isLower(i)) return y_[i] > 0 ? G_[i] > gmax2 : G_[i] > gmax1;
+  const double g = gradient(i);
+  if (isUpper(i)) return y_[i] > 0 ? -g > gmax1 : -g > gmax2;
+  if (isLower(i)) return y_[i] > 0 ? g > gmax2 : g > gmax1;
   return false;
 }
 
 void SmoSolver::shrink() {
+  next_i_valid_ = false;
   // gmax1 = max_{I_up} -y G, gmax2 = max_{I_low} y G  (libsvm's do_shrinking)
   double gmax1 = -kInf, gmax2 = -kInf;
   for (int t = 0; t < active_; ++t) {
-    const double yg = y_[t] * G_[t];
+    const double yg = yG_[t];
     if (inUp(t)) gmax1 = std::max(gmax1, -yg);
     if (inLow(t)) gmax2 = std::max(gmax2, yg);
   }
@@ -281,7 +343,8 @@ void SmoSolver::shrink() {
 
 void SmoSolver::reconstructGradient() {
   if (active_ == n_) return;
-  for (int t = active_; t < n_; ++t) G_[t] = G_bar_[t] - 1.0;
+  next_i_valid_ = false;
+  for (int t = active_; t < n_; ++t) yG_[t] = y_[t] * (G_bar_[t] - 1.0);
   // w_j = y_j alpha_j for free j (bounded ones are in G_bar already)
   int free_count = 0;
   for (int j = 0; j < active_; ++j) {
@@ -296,15 +359,15 @@ void SmoSolver::reconstructGradient() {
       double sum = 0.0;
 #pragma omp simd reduction(+ : sum)
       for (int j = 0; j < active_; ++j) sum += w[j] * static_cast<double>(Ki[j]);
-      G_[i] += y_[i] * sum;
+      yG_[i] += sum;
     }
   } else {
     for (int i = 0; i < active_; ++i) {
       if (w[i] == 0.0) continue;
       const float* Ki = column(i, n_);
-      // G_t += y_t w_i K_it over the inactive part (the two-column update with a zero weight)
-      loops::updateGradient(n_ - active_, G_.data() + active_, y_.data() + active_, Ki + active_,
-                            Ki + active_, w[i], 0.0);
+      // y_t G_t += w_i K_it over the inactive part (the two-column update with a zero weight)
+      loops::updateGradient(n_ - active_, yG_.data() + active_, Ki + active_, Ki + active_, w[i],
+                            0.0);
     }
   }
 }
@@ -315,7 +378,7 @@ void SmoSolver::swapIndex(int i, int j) {
   std::swap(y_[i], y_[j]);
   std::swap(C_[i], C_[j]);
   std::swap(alpha_[i], alpha_[j]);
-  std::swap(G_[i], G_[j]);
+  std::swap(yG_[i], yG_[j]);
   std::swap(G_bar_[i], G_bar_[j]);
   std::swap(up_penalty_[i], up_penalty_[j]);
   std::swap(low_penalty_[i], low_penalty_[j]);
@@ -328,7 +391,7 @@ double SmoSolver::bias() const {
   double ub = kInf, lb = -kInf, sum_free = 0.0;
   int nr_free = 0;
   for (int i = 0; i < active_; ++i) {
-    const double yg = y_[i] * G_[i];
+    const double yg = yG_[i];
     if (isUpper(i)) {
       if (y_[i] < 0)
         ub = std::min(ub, yg);
@@ -351,7 +414,7 @@ double SmoSolver::bias() const {
 double SmoSolver::violation() const {
   double m_up = -kInf, m_low = -kInf;
   for (int t = 0; t < n_; ++t) {
-    const double yg = y_[t] * G_[t];
+    const double yg = yG_[t];
     if (inUp(t)) m_up = std::max(m_up, -yg);
     if (inLow(t)) m_low = std::max(m_low, yg);
   }
@@ -382,6 +445,7 @@ SolverResult SmoSolver::run() {
       counter = 1;  // shrink at the next iteration
     }
     ++iter;
+    active_sum_ += active_;
     update(i, j);
   }
   if (active_ < n_) {
@@ -396,10 +460,10 @@ SolverResult SmoSolver::run() {
   result.gradient_bound.resize(n_);
   double v = 0.0;
   for (int t = 0; t < n_; ++t) {
-    v += alpha_[t] * (G_[t] - 1.0);
+    v += alpha_[t] * (gradient(t) - 1.0);
     const int o = index_[t];
     result.alpha[o] = alpha_[t];
-    result.gradient[o] = G_[t];
+    result.gradient[o] = gradient(t);
     result.gradient_bound[o] = G_bar_[t];
     if (alpha_[t] > 0) ++result.support_vectors;
     if (isUpper(t)) ++result.bounded_support_vectors;
@@ -407,6 +471,8 @@ SolverResult SmoSolver::run() {
   result.objective = 0.5 * v;
   result.cache_hits = cache_.hits();
   result.cache_misses = cache_.misses();
+  result.kernel_entries = kernel_entries_;
+  result.mean_active = iter > 0 ? static_cast<double>(active_sum_) / iter : 0.0;
   return result;
 }
 
@@ -420,6 +486,10 @@ std::string SolverOptions::validate() const {
     msg << "max_iterations must be positive, got " << max_iterations;
   else if (!(cache_mb >= 0.0) || !std::isfinite(cache_mb))
     msg << "cache_mb must be >= 0 and finite, got " << cache_mb;
+  else if (threads < 1 || threads > 1024)
+    msg << "threads must be in [1, 1024], got " << threads;
+  else if (parallel_min_samples < 8)
+    msg << "parallel_min_samples must be >= 8, got " << parallel_min_samples;
   return msg.str();
 }
 
@@ -428,25 +498,44 @@ std::string SolverResult::report() const {
   msg << (status == SolverStatus::kOptimal ? "optimal" : "iteration limit") << ", iterations "
       << iterations << ", objective " << objective << ", bias " << bias << ", violation "
       << violation << ", SV " << support_vectors << " (bounded " << bounded_support_vectors
-      << "), cache hits " << cache_hits << " misses " << cache_misses;
+      << "), cache hits " << cache_hits << " misses " << cache_misses << ", kernel entries "
+      << kernel_entries;
   return msg.str();
 }
 
 SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
-                         const WarmStart* warm) {
+                         const WarmStart* warm, SolverWorkspace* workspace) {
   validateProblem(X, y, C, kernel, opt);
-  KernelColumns data(X, kernel);
-  SmoSolver solver(data, y, C, opt);
+  if (warm != nullptr)
+    if (const std::string w = warm->validate(X.cols(), X.rows()); !w.empty()) fail(w);
+  RetainedLayout layout;
+  std::unique_ptr<KernelCache> cache;
+  if (workspace != nullptr) {
+    cache = WorkspaceAccess::take(*workspace, X, y, kernel, opt.cache_mb, warm, layout);
+  } else {
+    cache = std::make_unique<KernelCache>(static_cast<int>(X.cols()), opt.cache_mb);
+    layout.order.resize(X.cols());
+    for (Eigen::Index i = 0; i < X.cols(); ++i) layout.order[i] = static_cast<int>(i);
+  }
+  KernelColumns data(X, kernel, layout.order);
+  SmoSolver solver(data, *cache, layout.order, y, C, opt);
   WarmStartCounts counts;
   if (warm != nullptr) {
-    if (const std::string w = warm->validate(X.cols(), X.rows()); !w.empty()) fail(w);
+    // The start is computed in sample order (its kernel rows need no cache).
+    const KernelColumns in_order(X, kernel);
     Eigen::VectorXd alpha, G, G_bar;
-    counts = detail::initialiseFromWarmStart(*warm, X, y, C, data, alpha, G, G_bar);
+    counts = detail::initialiseFromWarmStart(*warm, X, y, C, in_order, alpha, G, G_bar);
     solver.setStart(alpha, G, G_bar);
   }
   SolverResult result = solver.run();
+  counts.reused_columns = layout.reused_columns;
+  counts.patched_rows = layout.patched_rows;
   result.warm = counts;
+  if (workspace != nullptr)
+    result.workspace_solve = WorkspaceAccess::give(*workspace, std::move(cache), kernel,
+                                                   static_cast<int>(X.rows()), opt.cache_mb,
+                                                   solver.order());
   return result;
 }
 
@@ -461,6 +550,7 @@ WarmStart makeWarmStart(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
   w.gradient = previous.gradient;
   w.gradient_bound = previous.gradient_bound;
   w.previous_index = std::move(previous_index);
+  w.workspace_solve = previous.workspace_solve;
   return w;
 }
 

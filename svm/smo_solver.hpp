@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "svm/kernel.hpp"
+#include "svm/solver_workspace.hpp"
 #include "svm/warm_start.hpp"
 
 namespace svmp::svm {
@@ -25,6 +26,11 @@ struct SolverOptions {
   long max_iterations = 10'000'000;  // reported as SolverStatus::kIterationLimit when reached
   double cache_mb = 100;             // kernel column cache (float entries)
   bool shrinking = true;
+  // Threads inside one solve (OpenMP), used while the active set has at least parallel_min_samples
+  // samples (measured threshold: docs/benchmarks.md). 1 for solves that already run in parallel,
+  // e.g. one-versus-rest across classes.
+  int threads = 1;
+  int parallel_min_samples = 8192;
 
   std::string validate() const;  // "" when OK, else what is wrong
 };
@@ -44,16 +50,21 @@ struct SolverResult {
   int support_vectors = 0;          // alpha_i > 0
   int bounded_support_vectors = 0;  // alpha_i = C_i
   long long cache_hits = 0, cache_misses = 0;
+  long long kernel_entries = 0;  // kernel values computed for the cache (the solver's main cost)
+  double mean_active = 0;        // active set size per iteration (shrinking), mean
   WarmStartCounts warm;  // what the warm start changed (zero for a cold start)
+  long long workspace_solve = 0;  // SolverWorkspace::lastSolve() after this solve (0: none given)
 
   std::string report() const;  // one line
 };
 
 // Throws std::invalid_argument for bad input (sizes, NaN/Inf, labels not +-1, one class only,
-// C <= 0, bad kernel parameters, bad options, inconsistent warm start).
+// C <= 0, bad kernel parameters, bad options, inconsistent warm start). With a workspace, a warm
+// start from the workspace's last solve keeps its cached kernel columns (svm/solver_workspace.hpp);
+// the result is the same optimum either way.
 SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
-                         const WarmStart* warm = nullptr);
+                         const WarmStart* warm = nullptr, SolverWorkspace* workspace = nullptr);
 
 // Warm start for a new problem from the previous problem (X, y, C) and its solution.
 // previous_index[i] is the previous index of new sample i, or -1 for an added sample.

@@ -69,28 +69,31 @@ struct TruncatedRbfEvaluator::Tree {
 };
 
 struct TruncatedRbfEvaluator::Blocks {
-  static constexpr int kBlock = 32;
+  // Leaf size: in the plane leaves of 32 prune well; from d = 4 on a leaf's box spans most of the
+  // truncation radius anyway and fewer, larger leaves cost less per query (d = 6, n = 20,000:
+  // 2.01 / 1.80 / 1.86 / 1.99 us with leaves of 32 / 64 / 128 / 256; d = 2: 16 and 32 equal).
+  int block;
   std::vector<double> xs, coef, lo, hi, centre, radius;
   loops::BlockedSupportVectors view{};
 
-  Blocks(const Eigen::MatrixXd& sv, const Eigen::VectorXd& c) {
+  Blocks(const Eigen::MatrixXd& sv, const Eigen::VectorXd& c) : block(sv.rows() <= 3 ? 32 : 64) {
     const int d = static_cast<int>(sv.rows()), m = static_cast<int>(sv.cols());
     std::vector<int> order(m);
     std::iota(order.begin(), order.end(), 0);
     std::vector<std::pair<int, int>> leaves;
     split(sv, order, 0, m, leaves);
     const int blocks = static_cast<int>(leaves.size());
-    const long stride = static_cast<long>(blocks) * kBlock;
+    const long stride = static_cast<long>(blocks) * block;
     xs.assign(static_cast<size_t>(d) * stride, 0.0);
     coef.assign(stride, 0.0);
     lo.assign(static_cast<size_t>(d) * blocks, 0.0);
     hi.assign(static_cast<size_t>(d) * blocks, 0.0);
     for (int b = 0; b < blocks; ++b) {
       const auto [begin, end] = leaves[b];
-      for (int slot = 0; slot < kBlock; ++slot) {
+      for (int slot = 0; slot < block; ++slot) {
         // padding repeats the leaf's first point with coefficient 0
         const int src = order[slot < end - begin ? begin + slot : begin];
-        const long col = static_cast<long>(b) * kBlock + slot;
+        const long col = static_cast<long>(b) * block + slot;
         for (int k = 0; k < d; ++k) xs[k * stride + col] = sv(k, src);
         coef[col] = slot < end - begin ? c[src] : 0.0;
       }
@@ -122,14 +125,14 @@ struct TruncatedRbfEvaluator::Blocks {
       }
       radius[b] = std::sqrt(r2) * (1 + 1e-12);
     }
-    view = {d,           blocks,    kBlock,    stride,        xs.data(),
+    view = {d,           blocks,    block,    stride,        xs.data(),
             coef.data(), lo.data(), hi.data(), centre.data(), radius.data()};
   }
 
-  // Median split on the widest coordinate, at a multiple of kBlock so leaves are full.
-  static void split(const Eigen::MatrixXd& sv, std::vector<int>& order, int begin, int end,
-                    std::vector<std::pair<int, int>>& leaves) {
-    if (end - begin <= kBlock) {
+  // Median split on the widest coordinate, at a multiple of block so leaves are full.
+  void split(const Eigen::MatrixXd& sv, std::vector<int>& order, int begin, int end,
+             std::vector<std::pair<int, int>>& leaves) const {
+    if (end - begin <= block) {
       leaves.emplace_back(begin, end);
       return;
     }
@@ -146,7 +149,7 @@ struct TruncatedRbfEvaluator::Blocks {
         widest = k;
       }
     }
-    const int mid = begin + ((end - begin) / 2 + kBlock - 1) / kBlock * kBlock;
+    const int mid = begin + ((end - begin) / 2 + block - 1) / block * block;
     std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                      [&](int a, int b) { return sv(widest, a) < sv(widest, b); });
     split(sv, order, begin, mid, leaves);

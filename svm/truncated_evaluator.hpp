@@ -3,9 +3,9 @@
 // count.
 //
 // For d <= 16 the support vectors are split by a k-d tree (median splits on the widest coordinate)
-// into leaves of 32, stored coordinate-major with bounding spheres and boxes; a query skips every
-// leaf whose sphere or box is at squared distance >= 5/gamma and sums the others with vector
-// instructions (skipping 4-groups with no lane inside the radius), masking
+// into leaves of 32 (64 from d = 4), stored coordinate-major with bounding spheres and boxes; a
+// query skips every leaf whose sphere or box is at squared distance >= 5/gamma and sums the others
+// with 8-lane (AVX-512) or 4-lane vectors (skipping groups with no lane inside the radius), masking
 // the terms outside the radius. Near the decision boundary ~160 of 1,400 support vectors (d = 6)
 // are inside the radius, and evaluating leaves with 4-lane vectors was ~3x faster than nanoflann's
 // radius search with one scalar exponential per neighbour (docs/svm.md).

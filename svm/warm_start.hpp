@@ -29,6 +29,9 @@ struct WarmStart {
   // A continued sample whose coordinates differ is "moved"; previous samples nobody continues are
   // "removed". Coordinates are compared exactly, so callers need not list moved samples.
   std::vector<Eigen::Index> previous_index;
+  // SolverResult::workspace_solve of the previous solution: a workspace whose last solve it is
+  // keeps its kernel columns for this one.
+  long long workspace_solve = 0;
 
   // "" when consistent with a new problem of n samples in dimension d, else what is wrong.
   std::string validate(Eigen::Index n, Eigen::Index d) const;
@@ -36,6 +39,7 @@ struct WarmStart {
 
 struct WarmStartCounts {
   long kept = 0, moved = 0, added = 0, removed = 0, adjusted = 0, columns = 0;
+  long long reused_columns = 0, patched_rows = 0;  // cached columns carried over by a workspace
 };
 
 namespace detail {

@@ -25,6 +25,8 @@ double parseDouble(const std::string& flag, const std::string& value, double min
   return v;
 }
 
+bool isCheckerName(const std::string& name) { return name == "fcl" || name == "fastron-fk" || name == "fastron-rbf"; }
+
 const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
          "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify [svpp]]\n"
@@ -44,7 +46,10 @@ const char* driverUsage() {
          "              path is verified on FCL and its invalid stretches replanned (verify and repair)\n"
          "  --ompl-log  every run of every planner in OMPL's benchmark log format: ompl_benchmark_statistics\n"
          "              -d DB FILE makes the database Planner Arena reads\n"
-         "  --check     print the scenario's summary, validate planners and --set, verify the witness\n";
+         "  --check     print the scenario's summary, validate planners and --set, verify the witness\n"
+         "       svmp-plan --merge SHARD.json... [--json FILE] [--scenario FILE]\n"
+         "  --merge     merge the --json files of shards of one run (seed ranges of scripts/sweep) into that\n"
+         "              run's table and JSON; the scenario is the shards' \"file\" unless --scenario is given\n";
 }
 
 DriverOptions parseDriverOptions(int argc, const char* const* argv) {
@@ -63,13 +68,13 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
         if (!name.empty()) o.planners.push_back(name);
       if (o.planners.empty()) throw std::invalid_argument("flag --planners: empty list");
     } else if (flag == "--runs") o.runs = static_cast<int>(parseLong(flag, value(), 1, 100000));
-    else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, 1L << 62));
-    else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, 1024));
+    else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, kMaxSeed));
+    else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, kMaxThreads));
     else if (flag == "--time-limit") o.time_limit = parseDouble(flag, value(), 1e-6, 1e7);
     else if (flag == "--queries") o.queries = static_cast<int>(parseLong(flag, value(), 1, 100000));
     else if (flag == "--checker") {
       o.checker = value();
-      if (o.checker != "fcl" && o.checker != "fastron-fk" && o.checker != "fastron-rbf")
+      if (!isCheckerName(o.checker))
         throw std::invalid_argument("flag --checker: '" + o.checker + "' is not fcl, fastron-fk or fastron-rbf");
     }
     else if (flag == "--json") o.json_path = value();
@@ -88,11 +93,21 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
       if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || eq == dot + 1)
         throw std::invalid_argument("flag --set: expected PLANNER.KEY=VALUE, got '" + kv + "'");
       o.overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    } else if (flag == "--merge") {
+      while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0) o.merge_files.push_back(argv[++i]);
+      if (o.merge_files.empty()) throw std::invalid_argument("flag --merge: expected shard JSON files");
     } else if (flag == "--check") o.check = true;
     else if (flag == "--help" || flag == "-h") o.help = true;
     else throw std::invalid_argument("unknown flag '" + flag + "'");
   }
-  if (!o.help && o.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
+  if (!o.merge_files.empty())
+    for (int i = 1; i < argc; ++i) {
+      const std::string flag = argv[i];
+      if (flag.rfind("--", 0) == 0 && flag != "--merge" && flag != "--json" && flag != "--scenario")
+        throw std::invalid_argument("flag " + flag + ": not used with --merge (the shards' JSON says how they ran)");
+    }
+  if (!o.help && o.scenario.empty() && o.merge_files.empty())
+    throw std::invalid_argument("flag --scenario is required");
   for (const auto& [flag, path] : {std::pair{"--json", &o.json_path}, std::pair{"--paths", &o.paths_json},
                                    std::pair{"--svg", &o.svg_dir}, std::pair{"--path-dir", &o.paths_dir},
                                    std::pair{"--ompl-log", &o.ompl_log}})

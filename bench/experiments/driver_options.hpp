@@ -6,6 +6,12 @@
 
 namespace svmp::experiments {
 
+// Bounds of --seed and --threads; the Python module checks its arguments against the same.
+inline constexpr long kMaxSeed = 1L << 62;
+inline constexpr int kMaxThreads = 1024;
+// fcl, fastron-fk or fastron-rbf (--checker).
+bool isCheckerName(const std::string& name);
+
 struct DriverOptions {
   std::string scenario;
   std::vector<std::string> planners = {"svmp", "prm"};
@@ -25,6 +31,9 @@ struct DriverOptions {
   std::vector<std::pair<std::string, std::string>> overrides;  // ("svmp.sigma", "0.3")
   bool check = false;
   bool help = false;
+  // --merge FILE...: no runs; merge shard JSONs of one sweep into the single run's table and --json
+  // (bench/experiments/run_records.hpp). Only --json and --scenario go with it.
+  std::vector<std::string> merge_files;
 };
 
 // A flag's integer or number within [min, max]; throws std::invalid_argument naming the flag and value.

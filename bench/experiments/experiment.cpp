@@ -13,6 +13,7 @@
 
 #include "bench/experiments/atomic_file.hpp"
 #include "bench/experiments/output_text.hpp"
+#include "bench/experiments/run_records.hpp"
 #include "bench/experiments/svg_writer.hpp"
 #include "bench/experiments/svpp_svg.hpp"
 #include "cspace/certified_motion_validator.hpp"
@@ -335,7 +336,8 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
     << ", \"queries\": " << scenario.queries.size() << ", \"seed\": " << options.seed
     << ", \"threads\": " << options.threads << ", \"simplified\": " << (options.simplify ? "true" : "false")
     << ", \"simplifier\": \"" << (!options.simplify ? "none" : options.simplify_svm ? "svpp" : "shortcut") << "\""
-    << ",\n  \"results\": [\n";
+    << ", \"checker\": " << jsonString(options.checker) << ", \"random_queries\": " << options.queries
+    << ", \"overrides\": " << overridesJson(options) << ",\n  \"results\": [\n";
   for (size_t p = 0; p < results.size(); ++p) {
     const auto& runs = results[p];
     const double n = static_cast<double>(runs.runs.size());
@@ -369,6 +371,8 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
       << ",\n      \"statuses\": [";
     for (size_t r = 0; r < runs.runs.size(); ++r)
       o << (r ? ", " : "") << "\"" << planners::planStatusName(runs.runs[r].result.status) << "\"";
+    o << "],\n      \"records\": [";  // every run, so shards of a sweep merge exactly (run_records.hpp)
+    for (size_t r = 0; r < runs.runs.size(); ++r) o << (r ? ",\n        " : "\n        ") << runRecordJson(runs.runs[r]);
     o << "] }" << (p + 1 < results.size() ? "," : "") << "\n";
   }
   o << "  ]\n}\n";

@@ -1,6 +1,7 @@
-// svmp-plan: the experiment driver (docs/architecture.md, "The driver"). Loads a scenario, runs each planner N times with seeds
-// S, S+1, ..., prints the thesis-style table and writes JSON and pictures. Bad input: one clear error,
-// exit status 2.
+// svmp-plan: the experiment driver (docs/architecture.md, "The driver"). Loads a scenario, runs each
+// planner N times with seeds S, S+1, ..., prints the thesis-style table and writes JSON and pictures;
+// --merge joins the JSON of a sweep's shards (scripts/sweep) into the single run's table and JSON.
+// Bad input: one clear error, exit status 2.
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include "bench/experiments/driver_options.hpp"
 #include "bench/experiments/experiment.hpp"
 #include "bench/experiments/ompl_log.hpp"
+#include "bench/experiments/run_records.hpp"
 #include "bench/experiments/scenario_check.hpp"
 #include "cspace/scenario/scenario.hpp"
 
@@ -26,6 +28,14 @@ int main(int argc, char** argv) {
     return 0;
   }
   try {
+    if (!options.merge_files.empty()) {
+      if (!options.json_path.empty()) experiments::checkWritable("--json", options.json_path);
+      const auto merged = experiments::mergeShards(options.merge_files, options.scenario);
+      experiments::printTable(merged.scenario, merged.options, merged.results, std::cout);
+      if (!options.json_path.empty())
+        experiments::writeJson(options.json_path, merged.scenario, merged.options, merged.results);
+      return 0;
+    }
     cspace::Scenario scenario = cspace::loadScenario(options.scenario);
     if (options.queries > 0) scenario.queries = experiments::randomQueries(scenario, options.queries, options.seed);
     if (options.check) {

@@ -102,6 +102,27 @@ TEST(Solver, TinyCacheGivesTheSameSolution) {
   EXPECT_NEAR(a.objective, c.objective, 1e-9 * std::abs(a.objective));
 }
 
+// Threads split the loops of every iteration (forced at any size here); the element-wise parts give
+// the same bits, so the solve follows the same path unless selectJ meets an exact-rounding tie.
+TEST(Solver, ThreadsGiveTheSameSolution) {
+  const auto p = makeBallProblem(3, 300, 3, 23);  // small: a busy machine makes each barrier slow
+  const Eigen::VectorXd y = p.binary(1);
+  const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), kC);
+  const Kernel k = Kernel::rbfFromSigma(sigmaFor(p));
+  SolverOptions one, two;
+  two.threads = 2;
+  two.parallel_min_samples = 8;
+  const SolverResult a = solveBinary(p.X, y, C, k, one);
+  const SolverResult b = solveBinary(p.X, y, C, k, two);
+  EXPECT_NEAR(a.objective, b.objective, 1e-6 * std::abs(a.objective));
+  EXPECT_EQ(a.support_vectors, b.support_vectors);
+  EXPECT_LT((a.alpha - b.alpha).cwiseAbs().maxCoeff(), 1e-3 * kC);
+  const SolverResult again = solveBinary(p.X, y, C, k, two);  // same thread count, same result
+  EXPECT_EQ(again.alpha, b.alpha);
+  two.threads = 0;
+  EXPECT_THROW(solveBinary(p.X, y, C, k, two), std::invalid_argument);
+}
+
 TEST(Solver, IterationLimitIsReported) {
   const auto p = makeBallProblem(2, 2000, 3, 3);
   SolverOptions opt;

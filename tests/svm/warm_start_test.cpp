@@ -97,6 +97,86 @@ TEST(WarmStart, ReachesTheColdObjective) {
   }
 }
 
+// Keeps every sample but those with index % drop == 0 (drop 0: none), then adds `added` new ones.
+Edited removeAndAdd(const testing::BallProblem& p, const Eigen::VectorXd& y, int drop, int added,
+                    unsigned long long problem_seed) {
+  const Eigen::Index n = p.X.cols();
+  const auto more = makeBallProblem(static_cast<int>(p.X.rows()), static_cast<int>(n + added), 3,
+                                    problem_seed);
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (drop == 0 || i % drop != 0) keep.push_back(i);
+  Edited e;
+  e.X.resize(p.X.rows(), static_cast<Eigen::Index>(keep.size()) + added);
+  e.y.resize(e.X.cols());
+  for (size_t s = 0; s < keep.size(); ++s) {
+    e.X.col(s) = p.X.col(keep[s]);
+    e.y[s] = y[keep[s]];
+    e.previous_index.push_back(keep[s]);
+  }
+  for (int a = 0; a < added; ++a) {
+    const Eigen::Index s = static_cast<Eigen::Index>(keep.size()) + a;
+    e.X.col(s) = more.X.col(n + a);
+    e.y[s] = more.labels[n + a] == 1 ? 1.0 : -1.0;
+    e.previous_index.push_back(-1);
+  }
+  return e;
+}
+
+// A workspace carries the kernel columns of kept samples into the retrain and recomputes only the
+// rows of new ones. Wrong rows would show as a different optimum or a KKT violation measured with
+// exact kernel values; reuse shows as fewer kernel values computed.
+TEST(WarmStart, WorkspaceKeepsColumnsAndReachesTheSameOptimum) {
+  for (int d : {2, 6}) {
+    const auto p = makeBallProblem(d, 3000, 3, 60 + d);
+    const Eigen::VectorXd y = p.binary();
+    const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
+    const SolverOptions opt;
+    const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), 10.0);
+    // moved + removed + added and shuffled; only removed (kept samples past the new end move);
+    // only added (the problem grows past the cached columns).
+    const std::vector<Edited> edits = {edit(p, 60 + d, y, 0.05, 7), removeAndAdd(p, y, 7, 0, 60 + d),
+                                       removeAndAdd(p, y, 0, 400, 60 + d)};
+    for (size_t c = 0; c < edits.size(); ++c) {
+      const Edited& e = edits[c];
+      SolverWorkspace workspace;
+      const SolverResult first = solveBinary(p.X, y, C, k, opt, nullptr, &workspace);
+      EXPECT_EQ(first.workspace_solve, workspace.lastSolve());
+      const WarmStart warm = makeWarmStart(p.X, y, C, first, e.previous_index);
+      const Eigen::VectorXd C2 = Eigen::VectorXd::Constant(e.y.size(), 10.0);
+      const SolverResult plain = solveBinary(e.X, e.y, C2, k, opt, &warm);
+      const SolverResult kept = solveBinary(e.X, e.y, C2, k, opt, &warm, &workspace);
+      SCOPED_TRACE("d=" + std::to_string(d) + " edit " + std::to_string(c));
+      ASSERT_EQ(kept.status, SolverStatus::kOptimal);
+      EXPECT_GT(kept.warm.reused_columns, 0);
+      EXPECT_LT(kept.kernel_entries, plain.kernel_entries);
+      EXPECT_NEAR(kept.objective, plain.objective, 1e-4 * std::abs(plain.objective));
+      const Eigen::VectorXd G = testing::exactGradient(e.X, e.y, kept.alpha, k);
+      EXPECT_LT(testing::kktViolation(e.y, C2, kept.alpha, G), 1.5 * opt.eps);
+      EXPECT_NEAR(e.y.dot(kept.alpha), 0.0, 1e-9);
+      // A warm start that does not continue the workspace's last solve reuses nothing.
+      const SolverResult again = solveBinary(e.X, e.y, C2, k, opt, &warm, &workspace);
+      EXPECT_EQ(again.warm.reused_columns, 0);
+      EXPECT_NEAR(again.objective, plain.objective, 1e-4 * std::abs(plain.objective));
+    }
+  }
+}
+
+TEST(WarmStart, ColdSolveInAWorkspaceIsTheSameSolve) {
+  const auto p = makeBallProblem(3, 1500, 3, 12);
+  const Eigen::VectorXd y = p.binary();
+  const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
+  const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), 10.0);
+  const SolverResult plain = solveBinary(p.X, y, C, k, {});
+  SolverWorkspace workspace;
+  for (int round = 0; round < 2; ++round) {  // the second one reuses the first one's memory
+    const SolverResult r = solveBinary(p.X, y, C, k, {}, nullptr, &workspace);
+    EXPECT_EQ(r.alpha, plain.alpha);
+    EXPECT_EQ(r.iterations, plain.iterations);
+    EXPECT_EQ(r.kernel_entries, plain.kernel_entries);
+  }
+}
+
 TEST(WarmStart, InitialGradientIsExact) {
   const auto p = makeBallProblem(3, 1500, 3, 8);
   const Eigen::VectorXd y = p.binary();

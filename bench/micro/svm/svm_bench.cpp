@@ -52,6 +52,23 @@ void BM_TrainCold_svmp(benchmark::State& state) {
   state.counters["objective"] = r.objective;
   state.counters["SV"] = r.support_vectors;
   state.counters["iterations"] = static_cast<double>(r.iterations);
+  state.counters["entries"] = static_cast<double>(r.kernel_entries);
+  state.counters["active"] = r.mean_active;
+}
+
+// Threads inside one solve, parallel at every active-set size (to find where it pays).
+void BM_TrainParallel_svmp(benchmark::State& state) {
+  const auto& p = problem(state.range(0), state.range(1));
+  const Eigen::VectorXd y = p.binary();
+  const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), kC);
+  SolverOptions opt;
+  opt.threads = static_cast<int>(state.range(2));
+  opt.parallel_min_samples = 8;
+  SolverResult r;
+  for (auto _ : state) r = solveBinary(p.X, y, C, kernelFor(p), opt);
+  state.counters["objective"] = r.objective;
+  state.counters["iterations"] = static_cast<double>(r.iterations);
+  state.counters["active"] = r.mean_active;
 }
 
 void BM_TrainCold_libsvm(benchmark::State& state) {
@@ -68,6 +85,7 @@ struct WarmCase {
   Eigen::MatrixXd X;
   Eigen::VectorXd y, C;
   WarmStart warm;
+  std::vector<Eigen::Index> previous_index;
 };
 
 // 5% moved by a tenth of a ball radius, 5% removed, 5% added.
@@ -113,6 +131,7 @@ WarmCase makeWarmCase(int d, int n) {
   }
   w.C = Eigen::VectorXd::Constant(w.y.size(), kC);
   w.warm = makeWarmStart(p.X, y, C, first, prev);
+  w.previous_index = prev;
   return w;
 }
 
@@ -124,6 +143,33 @@ void BM_TrainWarm_svmp(benchmark::State& state) {
   state.counters["objective"] = r.objective;
   state.counters["iterations"] = static_cast<double>(r.iterations);
   state.counters["columns"] = static_cast<double>(r.warm.columns);
+  state.counters["entries"] = static_cast<double>(r.kernel_entries);
+  state.counters["active"] = r.mean_active;
+}
+
+// The retrain a planner does: the first solve ran in a workspace, which keeps its kernel columns.
+void BM_TrainWarm_retained(benchmark::State& state) {
+  const int d = state.range(0), n = state.range(1);
+  const WarmCase w = makeWarmCase(d, n);
+  const auto& p = problem(d, n);
+  const Kernel k = kernelFor(p);
+  const Eigen::VectorXd y = p.binary();
+  const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), kC);
+  SolverResult r;
+  for (auto _ : state) {
+    state.PauseTiming();
+    SolverWorkspace workspace;
+    const SolverResult first = solveBinary(p.X, y, C, k, SolverOptions(), nullptr, &workspace);
+    const WarmStart warm = makeWarmStart(p.X, y, C, first, w.previous_index);
+    state.ResumeTiming();
+    r = solveBinary(w.X, w.y, w.C, k, SolverOptions(), &warm, &workspace);
+  }
+  state.counters["objective"] = r.objective;
+  state.counters["iterations"] = static_cast<double>(r.iterations);
+  state.counters["columns"] = static_cast<double>(r.warm.columns);
+  state.counters["reused"] = static_cast<double>(r.warm.reused_columns);
+  state.counters["entries"] = static_cast<double>(r.kernel_entries);
+  state.counters["active"] = r.mean_active;
 }
 
 void BM_TrainOvr_svmp(benchmark::State& state) {
@@ -219,15 +265,26 @@ int main(int argc, char** argv) {
     trainArgs(b);
     b->Iterations(3);
   }
-  benchmark::RegisterBenchmark("BM_TrainWarm/svmp", BM_TrainWarm_svmp)
-      ->ArgNames({"d", "n"})
-      ->Unit(benchmark::kMillisecond)
-      ->UseRealTime()
-      ->Iterations(3)
-      ->Args({2, 10000})
-      ->Args({2, 20000})
-      ->Args({6, 10000})
-      ->Args({6, 20000});
+  for (auto [name, fn] : {std::pair{"BM_TrainWarm/svmp", &BM_TrainWarm_svmp},
+                          std::pair{"BM_TrainWarm/retained", &BM_TrainWarm_retained}}) {
+    benchmark::RegisterBenchmark(name, fn)
+        ->ArgNames({"d", "n"})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(3)
+        ->Args({2, 10000})
+        ->Args({2, 20000})
+        ->Args({6, 10000})
+        ->Args({6, 20000});
+  }
+  auto* parallel = benchmark::RegisterBenchmark("BM_TrainParallel/svmp", BM_TrainParallel_svmp)
+                       ->ArgNames({"d", "n", "threads"})
+                       ->Unit(benchmark::kMillisecond)
+                       ->UseRealTime()
+                       ->Iterations(3);
+  for (int d : {2, 6})
+    for (int n : {2000, 5000, 10000, 20000})
+      for (int t : {1, 2}) parallel->Args({d, n, t});
   benchmark::RegisterBenchmark("BM_TrainOvr/svmp/d:6/n:20000", BM_TrainOvr_svmp)
       ->ArgName("threads")
       ->Arg(1)

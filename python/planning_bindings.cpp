@@ -1,0 +1,159 @@
+// svmp.load_scenario, svmp.Scenario (its exact FCL collision checker, metric and queries) and svmp.plan:
+// one run of a registered planner exactly as svmp-plan does it (bench/experiments/experiment.hpp: the
+// certifier, verify and repair, path measurements), so a seed gives the same result here as there.
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <sstream>
+
+#include "bench/experiments/experiment.hpp"
+#include "cspace/collision_checker.hpp"
+#include "planners/planner_registry.hpp"
+#include "python/arrays.hpp"
+#include "python/bindings.hpp"
+
+namespace svmp::python {
+namespace {
+
+struct Scenario {
+  explicit Scenario(cspace::Scenario s)
+      : scenario(std::move(s)),
+        space(scenario.makeSpace()),
+        checker(std::make_unique<cspace::CollisionChecker>(scenario.robot, scenario.environment, scenario.self_collision)) {}
+  Eigen::VectorXd point(const py::object& q, const char* name) const {
+    return vectorFromArray(q, name, scenario.robot->dof());
+  }
+  cspace::Scenario scenario;
+  cspace::ConfigurationSpace space;
+  std::unique_ptr<cspace::CollisionChecker> checker;  // exact, FCL
+};
+
+struct Plan {
+  std::string planner, status, message;
+  std::uint64_t seed = 0;
+  bool solved = false, certified = false;
+  py::array_t<double> path;
+  py::dict counters;
+};
+
+// A --set value as svmp-plan would read it from the command line.
+std::string parameterText(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::float_>(value)) return py::str(py::repr(value));  // shortest round-trip digits
+  return py::str(value);
+}
+
+Plan plan(const Scenario& s, const std::string& planner, long long seed, const py::dict& params, int query,
+          const std::string& checker, double time_limit, int threads, bool simplify) {
+  if (seed < 0 || seed > experiments::kMaxSeed)
+    throw py::value_error("seed is " + std::to_string(seed) + ": must be in [0, 2^62]");
+  const int queries = static_cast<int>(s.scenario.queries.size());
+  if (query < 0 || query >= queries)
+    throw py::value_error("query is " + std::to_string(query) + ": the scenario has " + std::to_string(queries) +
+                          " quer" + (queries == 1 ? "y" : "ies"));
+  if (!experiments::isCheckerName(checker))
+    throw py::value_error("checker is '" + checker + "': expected fcl, fastron-fk or fastron-rbf");
+  if (!(time_limit >= 0)) throw py::value_error("time_limit is " + numberText(time_limit) + ": must be >= 0 (0: none)");
+  if (threads < 1 || threads > experiments::kMaxThreads)
+    throw py::value_error("threads is " + std::to_string(threads) + ": must be in [1, " +
+                          std::to_string(experiments::kMaxThreads) + "]");
+  experiments::DriverOptions options;
+  options.scenario = s.scenario.path;
+  options.planners = {planner};
+  options.seed = static_cast<unsigned long>(seed);
+  options.threads = threads;
+  options.time_limit = time_limit;
+  options.checker = checker;
+  options.simplify = simplify;
+  for (const auto& [key, value] : params) {
+    const std::string name = py::str(key);
+    // "sigma" is the planner's own; "fastron-fk.gamma" names a checker's parameter in full.
+    options.overrides.emplace_back(name.find('.') == std::string::npos ? planner + "." + name : name, parameterText(value));
+  }
+  cspace::Scenario one = s.scenario;
+  one.queries = {s.scenario.queries[query]};
+  experiments::RunRecord record;
+  {
+    py::gil_scoped_release release;
+    std::ostringstream log;
+    record = experiments::runExperiment(one, options, log).front().runs.front();
+  }
+  const planners::PlanResult& r = record.result;
+  Plan out;
+  out.planner = planner;
+  out.status = planners::planStatusName(r.status);
+  out.message = r.message;
+  out.seed = static_cast<std::uint64_t>(seed);
+  out.solved = r.solved();
+  out.certified = r.certified;
+  out.path = pointsToArray(r.solved() ? r.path : std::vector<Eigen::VectorXd>{}, s.scenario.robot->dof());
+  const std::pair<const char*, std::uint64_t> counts[] = {
+      {"collision_checks", r.collision_checks}, {"local_planner_calls", r.local_planner_calls},
+      {"distance_queries", r.distance_queries}, {"certified_segments", r.certified_segments},
+      {"milestones", r.milestones},             {"roadmap_edges", r.roadmap_edges},
+      {"support_vectors", r.support_vectors},   {"repaired_stretches", std::uint64_t(r.repaired_stretches)},
+      {"exact_checks", r.exact_checks}};
+  const std::pair<const char*, double> measures[] = {
+      {"time_ms", record.time_ms},          {"path_length", record.path_length},
+      {"raw_length", record.raw_length},    {"smoothness", record.smoothness},
+      {"min_clearance", record.min_clearance}, {"sampling_ms", r.times.sampling_ms},
+      {"training_ms", r.times.training_ms}, {"milestones_ms", r.times.milestones_ms},
+      {"roadmap_ms", r.times.roadmap_ms},   {"query_ms", r.times.query_ms},
+      {"certify_ms", r.times.certify_ms}};
+  for (const auto& [name, value] : counts) out.counters[name] = value;
+  for (const auto& [name, value] : measures) out.counters[name] = value;
+  return out;
+}
+
+}  // namespace
+
+void bindPlanning(py::module_& m) {
+  py::class_<Scenario>(m, "Scenario", "A scenario file: robot, obstacles, queries, resolution, planner parameters.")
+      .def_property_readonly("name", [](const Scenario& s) { return s.scenario.name; })
+      .def_property_readonly("path", [](const Scenario& s) { return s.scenario.path; })
+      .def_property_readonly("dof", [](const Scenario& s) { return s.scenario.robot->dof(); })
+      .def_property_readonly("resolution", [](const Scenario& s) { return s.scenario.resolution; },
+                             "collision-checking resolution in the weighted metric")
+      .def_property_readonly("lower", [](const Scenario& s) { return vectorToArray(s.scenario.robot->lowerLimits()); })
+      .def_property_readonly("upper", [](const Scenario& s) { return vectorToArray(s.scenario.robot->upperLimits()); })
+      .def_property_readonly("queries", [](const Scenario& s) {
+        py::list out;
+        for (const auto& q : s.scenario.queries) out.append(py::make_tuple(vectorToArray(q.start), vectorToArray(q.goal)));
+        return out;
+      }, "list of (start, goal) arrays")
+      .def("check", [](const Scenario& s, const py::object& q) { return s.checker->check(s.point(q, "q")); }, py::arg("q"),
+           "exact (FCL) check: 0 free, the lowest id of an obstacle hit, -1 joint limits, -2 self-collision")
+      .def("is_valid", [](const Scenario& s, const py::object& q) { return s.checker->isValid(s.point(q, "q")); }, py::arg("q"))
+      .def("clearance", [](const Scenario& s, const py::object& q) { return s.checker->clearance(s.point(q, "q")); },
+           py::arg("q"), "FCL distance of the robot to the nearest real obstacle")
+      .def("distance", [](const Scenario& s, const py::object& a, const py::object& b) {
+        return s.space.distance(s.point(a, "a"), s.point(b, "b"));
+      }, py::arg("a"), py::arg("b"), "weighted joint metric (thesis eq. 4.3)")
+      .def("__repr__", [](const Scenario& s) {
+        return "<svmp.Scenario '" + s.scenario.name + "' dof=" + std::to_string(s.scenario.robot->dof()) + ">";
+      });
+  m.def("load_scenario", [](const std::string& path) { return Scenario(cspace::loadScenario(path)); }, py::arg("path"),
+        "Reads a scenario YAML file; a bad file raises svmp.ScenarioError (a ValueError) naming file, field and value.");
+
+  py::class_<Plan>(m, "Plan", "One run of a planner: status, certified path and counters.")
+      .def_readonly("planner", &Plan::planner)
+      .def_readonly("seed", &Plan::seed)
+      .def_readonly("status", &Plan::status, "solved, failed, timeout, invalid_start, invalid_goal, ...")
+      .def_readonly("message", &Plan::message, "why, when not solved")
+      .def_readonly("solved", &Plan::solved, "solved and certified collision-free")
+      .def_readonly("certified", &Plan::certified)
+      .def_readonly("path", &Plan::path, "(n, dof) waypoints, start to goal; empty when not solved")
+      .def_readonly("counters", &Plan::counters, "collision checks, local planner calls, ..., times (ms), path length")
+      .def("__repr__", [](const Plan& p) {
+        return "<svmp.Plan " + p.planner + " seed=" + std::to_string(p.seed) + " " + p.status + " waypoints=" +
+               std::to_string(p.path.shape(0)) + ">";
+      });
+  m.def("plan", &plan, py::arg("scenario"), py::arg("planner"), py::arg("seed") = 1, py::arg("params") = py::dict(),
+        py::arg("query") = 0, py::arg("checker") = "fcl", py::arg("time_limit") = 0.0, py::arg("threads") = 1,
+        py::arg("simplify") = false,
+        "Runs one registered planner on one query of the scenario as svmp-plan does (--seed, --set PLANNER.KEY=VALUE "
+        "from params, --checker, --time-limit, --threads, --simplify); the path is certified collision-free.");
+  m.def("planners", &planners::plannerNames, "registered planner names");
+}
+
+}  // namespace svmp::python

@@ -1,0 +1,128 @@
+"""svmp.load_scenario and svmp.plan: a plan's path runs from the scenario's start to its goal and every
+segment passes a dense re-check with the module's exact collision check; a seed gives the same path
+again and the same numbers as svmp-plan; bad scenarios, parameters and points raise ValueError with the
+library's message."""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import svmp
+from conftest import scenario_path
+
+DETERMINISTIC = ["svmp", "prm", "ompl-rrtconnect", "ompl-lazyprm", "ompl-fmt"]  # repeat for a seed
+
+
+def dense_recheck(scenario, path, step):
+    """Every configuration at most `step` apart (weighted metric) along each segment is free."""
+    checks = 0
+    for a, b in zip(path[:-1], path[1:]):
+        pieces = max(1, int(np.ceil(scenario.distance(a, b) / step)))
+        for t in np.linspace(0.0, 1.0, pieces + 1):
+            assert scenario.check(a + t * (b - a)) == 0, f"segment {a} -> {b} collides at t = {t}"
+            checks += 1
+    return checks
+
+
+def test_scenario_exposes_the_file(fig35):
+    assert (fig35.name, fig35.dof, fig35.resolution) == ("thesis_fig3_5", 2, 0.05)
+    start, goal = fig35.queries[0]
+    np.testing.assert_array_equal(start, [1.0, 5.0])
+    np.testing.assert_array_equal(goal, [9.0, 5.0])
+    np.testing.assert_array_equal(fig35.lower, [0, 0])
+    assert fig35.check([5.0, 3.0]) == 1 and fig35.check([5.0, 8.0]) == 2  # inside the lower, upper block
+    assert fig35.check([5.0, 6.15]) == 0 and fig35.clearance([5.0, 6.15]) == pytest.approx(0.15, abs=1e-5)
+    assert fig35.distance([0, 0], [3, 4]) == pytest.approx(5.0)
+
+
+@pytest.mark.parametrize("planner", DETERMINISTIC + ["ompl-rrt", "local"])
+def test_path_joins_start_and_goal_and_passes_a_dense_recheck(fig35, planner):
+    plan = svmp.plan(fig35, planner, seed=2)
+    if planner in ("svmp", "ompl-rrtconnect"):  # these solve fig 3.5 at seed 2; the others may not
+        assert plan.solved, plan.message
+    if not plan.solved:
+        assert plan.path.shape == (0, 2) and plan.message
+        return
+    start, goal = fig35.queries[0]
+    assert plan.certified and plan.status == "solved"
+    assert plan.path.shape[1] == 2 and len(plan.path) >= 2
+    np.testing.assert_array_equal(plan.path[0], start)
+    np.testing.assert_array_equal(plan.path[-1], goal)
+    assert dense_recheck(fig35, plan.path, fig35.resolution / 10) > len(plan.path)
+    length = sum(fig35.distance(a, b) for a, b in zip(plan.path[:-1], plan.path[1:]))
+    assert plan.counters["path_length"] == pytest.approx(length, rel=1e-12)
+    assert plan.counters["collision_checks"] > 0 and plan.counters["min_clearance"] >= 0
+
+
+def test_arm_path_passes_a_dense_recheck():
+    arm = svmp.load_scenario(scenario_path("thesis_fig4_4.yaml"))
+    plan = svmp.plan(arm, "svmp", seed=1)
+    assert plan.solved, plan.message
+    assert plan.path.shape[1] == arm.dof == 5
+    start, goal = arm.queries[0]
+    np.testing.assert_array_equal(plan.path[0], start)
+    np.testing.assert_array_equal(plan.path[-1], goal)
+    dense_recheck(arm, plan.path, arm.resolution / 4)
+
+
+@pytest.mark.parametrize("planner", DETERMINISTIC)
+def test_same_seed_same_path(fig35, planner):
+    first, again = svmp.plan(fig35, planner, seed=5), svmp.plan(fig35, planner, seed=5)
+    np.testing.assert_array_equal(first.path, again.path)
+    for key in ("collision_checks", "local_planner_calls", "milestones", "roadmap_edges"):
+        assert first.counters[key] == again.counters[key]
+    other = svmp.plan(fig35, planner, seed=6)
+    assert other.counters["collision_checks"] != first.counters["collision_checks"] or \
+        not np.array_equal(other.path, first.path)
+
+
+def test_plan_equals_svmp_plan_for_the_same_seed_and_set(fig35, tmp_path):
+    driver = os.environ.get("SVMP_PLAN", "")
+    if not os.access(driver, os.X_OK):
+        pytest.skip("SVMP_PLAN not set (run through ctest)")
+    out = tmp_path / "r.json"
+    subprocess.run([driver, "--scenario", fig35.path, "--planners", "svmp", "--seed", "4", "--runs", "1",
+                    "--set", "svmp.sigma=0.4", "--json", str(out)], check=True, capture_output=True)
+    record = json.loads(out.read_text())["results"][0]["records"][0]
+    plan = svmp.plan(fig35, "svmp", seed=4, params={"sigma": 0.4})
+    assert plan.status == record["status"]
+    for key in ("collision_checks", "local_planner_calls", "distance_queries", "milestones", "support_vectors"):
+        assert plan.counters[key] == record[key], key
+    assert plan.counters["path_length"] == record["path_length"]
+    assert svmp.plan(fig35, "svmp", seed=4).counters["support_vectors"] != record["support_vectors"]
+
+
+def test_bad_scenario_raises_with_the_loaders_message(tmp_path):
+    with pytest.raises(svmp.ScenarioError, match="cannot open"):
+        svmp.load_scenario(str(tmp_path / "missing.yaml"))
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+                   "start: [0.5, .nan]\ngoal: [0.9, 0.9]\nresolution: 0.01\n")
+    with pytest.raises(ValueError, match=r"bad\.yaml.*start"):
+        svmp.load_scenario(str(bad))
+
+
+def test_bad_plan_arguments_raise_value_error(fig35):
+    with pytest.raises(ValueError, match="unknown planner 'rrt-star'"):
+        svmp.plan(fig35, "rrt-star")
+    with pytest.raises(ValueError, match="sigma"):
+        svmp.plan(fig35, "svmp", params={"sigma": -1})
+    with pytest.raises(ValueError, match="samplez"):
+        svmp.plan(fig35, "prm", params={"samplez": 10})
+    with pytest.raises(ValueError, match="query is 1: the scenario has 1 query"):
+        svmp.plan(fig35, "svmp", query=1)
+    with pytest.raises(ValueError, match=r"seed is -1: must be in \[0, 2\^62\]"):
+        svmp.plan(fig35, "svmp", seed=-1)
+    with pytest.raises(ValueError, match="checker is 'gjk'"):
+        svmp.plan(fig35, "svmp", checker="gjk")
+    with pytest.raises(ValueError, match=r"q: expected shape \(2,\), got \(3,\)"):
+        fig35.check([1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match=r"q\[0\] is nan"):
+        fig35.is_valid([np.nan, 2.0])
+
+
+def test_planners_lists_the_registry():
+    names = svmp.planners()
+    assert {"svmp", "prm", "local", "svpp"} <= set(names) and names == sorted(names)
