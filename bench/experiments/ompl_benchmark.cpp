@@ -56,9 +56,9 @@ Flags parseFlags(int argc, char** argv) {
     if (flag == "--scenario") f.scenario = v;
     else if (flag == "--log") f.log = v;
     else if (flag == "--runs") f.runs = static_cast<int>(experiments::parseLong(flag, v, 1, 100000));
-    else if (flag == "--threads") f.threads = static_cast<int>(experiments::parseLong(flag, v, 1, 1024));
+    else if (flag == "--threads") f.threads = static_cast<int>(experiments::parseLong(flag, v, 1, experiments::kMaxThreads));
     else if (flag == "--query") f.query = static_cast<int>(experiments::parseLong(flag, v, 0, 100000));
-    else if (flag == "--seed") f.seed = static_cast<unsigned long>(experiments::parseLong(flag, v, 1, 1L << 62));
+    else if (flag == "--seed") f.seed = static_cast<unsigned long>(experiments::parseLong(flag, v, 1, experiments::kMaxSeed));
     else if (flag == "--time-limit") f.time_limit = experiments::parseDouble(flag, v, 1e-3, 1e6);
     else if (flag == "--planners") {
       f.planners.clear();
