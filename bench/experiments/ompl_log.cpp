@@ -79,15 +79,8 @@ Properties runProperties(const RunRecord& r, bool simplified) {
   p["graph motions INTEGER"] = integer(result.roadmap_edges);
   p["seed INTEGER"] = integer(r.seed);
   p["query INTEGER"] = std::to_string(r.query);
-  p["svmp status TEXT"] = planners::planStatusName(result.status);
+  p.merge(counterProperties(result));
   p["collision checks INTEGER"] = integer(result.collision_checks);
-  p["local planner calls INTEGER"] = integer(result.local_planner_calls);
-  p["distance queries INTEGER"] = integer(result.distance_queries);
-  p["certified segments INTEGER"] = integer(result.certified_segments);
-  p["repaired stretches INTEGER"] = std::to_string(result.repaired_stretches);
-  p["exact checks INTEGER"] = integer(result.exact_checks);
-  p["support vectors INTEGER"] = integer(result.support_vectors);
-  p["milestones INTEGER"] = integer(result.milestones);
   p["build time REAL"] = real(r.build_ms / 1000);
   p["sampling time REAL"] = real(result.times.sampling_ms / 1000);
   p["training time REAL"] = real(result.times.training_ms / 1000);
@@ -99,6 +92,17 @@ Properties runProperties(const RunRecord& r, bool simplified) {
 }
 
 }  // namespace
+
+Properties counterProperties(const planners::PlanResult& result) {
+  return {{"svmp status TEXT", planners::planStatusName(result.status)},
+          {"local planner calls INTEGER", integer(result.local_planner_calls)},
+          {"distance queries INTEGER", integer(result.distance_queries)},
+          {"certified segments INTEGER", integer(result.certified_segments)},
+          {"repaired stretches INTEGER", std::to_string(result.repaired_stretches)},
+          {"exact checks INTEGER", integer(result.exact_checks)},
+          {"support vectors INTEGER", integer(result.support_vectors)},
+          {"milestones INTEGER", integer(result.milestones)}};
+}
 
 std::string utcNow() {
   const std::time_t now = std::time(nullptr);

@@ -17,6 +17,7 @@
 // queries, certified segments, repaired stretches, exact checks, support vectors, milestones (as graph
 // states; svmp-ompl-benchmark records it too), and the phase times (s) of build, sampling, training,
 // milestones, roadmap, query and certification.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,10 @@ std::string omplLogText(const cspace::Scenario& scenario, const DriverOptions& o
                         const std::vector<PlannerRuns>& results, const ExperimentTiming& timing);
 void writeOmplLog(const std::string& file, const cspace::Scenario& scenario, const DriverOptions& options,
                   const std::vector<PlannerRuns>& results, const ExperimentTiming& timing);
+// Our counters of one result as OMPL run properties ("name TYPE" -> value): svmp status, local planner
+// calls, distance queries, certified segments, repaired stretches, exact checks, support vectors,
+// milestones (svmp-ompl-benchmark records them for our planners too).
+std::map<std::string, std::string> counterProperties(const planners::PlanResult& result);
 // The current UTC time as ExperimentTiming::started wants it.
 std::string utcNow();
 
