@@ -9,8 +9,10 @@
 // Parameters (scenario `planners.ompl-*`): time_limit (s, default 10), range (the tree planners, 0 =
 // OMPL's default), k (PRM neighbours, 0 = OMPL's default), first_solution (optimizing planners, default
 // true; false runs them until the time limit).
-// Determinism: sampling uses our seeded generator, but OMPL's PRM interleaves growth and expansion by
-// wall time and checks for solutions in a second thread, so its runs are not exactly repeatable.
+// Determinism: sampling uses our seeded generator and each planner's own generator is seeded from the
+// run's seed, but OMPL's PRM interleaves growth and expansion by wall time and checks for solutions in
+// a second thread, and Informed RRT*'s informed sampler draws from OMPL's per-process generator, so
+// those two are not exactly repeatable.
 // The planners register themselves as ompl-prm, ompl-lazyprm, ompl-rrtconnect, ompl-rrt, ompl-sbl,
 // ompl-rrtstar, ompl-fmt and ompl-informedrrtstar (planners/planner_registry.hpp); nothing else is
 // exported. The state space, checker and validator are planners/ompl/state_bridge.hpp's.
@@ -41,6 +43,16 @@ namespace {
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
+
+// An OMPL planner whose own generator (goal bias, tree and cell choices) follows the run's seed:
+// OMPL seeds each RNG from one per-process sequence, so runs would depend on what ran before.
+template <class P>
+class Seeded final : public P {
+ public:
+  Seeded(const ob::SpaceInformationPtr& si, std::uint_fast32_t seed) : P(si) {
+    this->rng_.setLocalSeed(seed);
+  }
+};
 
 // Uniform sampling from our seeded generator, so OMPL's samples follow the run's seed.
 class SeededSampler final : public ob::StateSampler {
@@ -122,7 +134,7 @@ class OmplPlanner final : public Planner {
       objective->setCostThreshold(ob::Cost(std::numeric_limits<double>::infinity()));
       pdef->setOptimizationObjective(objective);
     }
-    const ob::PlannerPtr planner = makeOmplPlanner(si);
+    const ob::PlannerPtr planner = makeOmplPlanner(si, seed);
     planner->setProblemDefinition(pdef);
     planner->setup();
     const auto t0 = Clock::now();
@@ -148,23 +160,25 @@ class OmplPlanner final : public Planner {
     planner->clear();
   }
 
-  ob::PlannerPtr makeOmplPlanner(const ob::SpaceInformationPtr& si) const {
+  ob::PlannerPtr makeOmplPlanner(const ob::SpaceInformationPtr& si, std::uint64_t seed) const {
     auto ranged = [this](auto planner) {
       if (options_.range > 0) planner->setRange(options_.range);
       return planner;
     };
+    const auto local_seed = static_cast<std::uint_fast32_t>((seed * 0xD1B54A32D192ED03ULL) >> 33) | 1u;
     if (name_ == "ompl-prm") {
-      auto prm = std::make_shared<og::PRM>(si);
+      auto prm = std::make_shared<Seeded<og::PRM>>(si, local_seed);
       if (options_.k > 0) prm->setMaxNearestNeighbors(options_.k);
       return prm;
     }
     if (name_ == "ompl-lazyprm") return std::make_shared<og::LazyPRM>(si);
-    if (name_ == "ompl-rrt") return ranged(std::make_shared<og::RRT>(si));
-    if (name_ == "ompl-sbl") return ranged(std::make_shared<og::SBL>(si));
-    if (name_ == "ompl-rrtstar") return ranged(std::make_shared<og::RRTstar>(si));
-    if (name_ == "ompl-informedrrtstar") return ranged(std::make_shared<og::InformedRRTstar>(si));
+    if (name_ == "ompl-rrt") return ranged(std::make_shared<Seeded<og::RRT>>(si, local_seed));
+    if (name_ == "ompl-sbl") return ranged(std::make_shared<Seeded<og::SBL>>(si, local_seed));
+    if (name_ == "ompl-rrtstar") return ranged(std::make_shared<Seeded<og::RRTstar>>(si, local_seed));
+    if (name_ == "ompl-informedrrtstar")
+      return ranged(std::make_shared<Seeded<og::InformedRRTstar>>(si, local_seed));
     if (name_ == "ompl-fmt") return std::make_shared<og::FMT>(si);
-    return ranged(std::make_shared<og::RRTConnect>(si));
+    return ranged(std::make_shared<Seeded<og::RRTConnect>>(si, local_seed));
   }
 
   std::string name_;
