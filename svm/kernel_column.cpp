@@ -7,16 +7,14 @@
 
 namespace svmp::svm {
 
-namespace {
-std::vector<int> identity(Eigen::Index n) {
+std::vector<int> identityOrder(Eigen::Index n) {
   std::vector<int> order(n);
   for (Eigen::Index i = 0; i < n; ++i) order[i] = static_cast<int>(i);
   return order;
 }
-}  // namespace
 
 KernelColumns::KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel)
-    : KernelColumns(X, kernel, identity(X.cols())) {}
+    : KernelColumns(X, kernel, identityOrder(X.cols())) {}
 
 KernelColumns::KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel,
                              const std::vector<int>& order)

@@ -17,6 +17,9 @@
 
 namespace svmp::svm {
 
+// 0, 1, ..., n-1: the sample order of a solve that starts afresh.
+std::vector<int> identityOrder(Eigen::Index n);
+
 class KernelColumns {
  public:
   KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel);

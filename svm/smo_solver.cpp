@@ -422,6 +422,9 @@ double SmoSolver::violation() const {
 }
 
 SolverResult SmoSolver::run() {
+  // libsvm shrinks every 1000 iterations; a warm start often finishes in fewer, so it shrinks every
+  // 100 (d = 2: the active set 10,000 -> 3,000 and 17% less time; d = 6: 0-8%; 300 and 30 were worse).
+  constexpr int kWarmShrinkEvery = 100;
   for (int i = 0; i < n_; ++i) updateMasks(i);
   SolverResult result;
   long iter = 0;
@@ -433,7 +436,7 @@ SolverResult SmoSolver::run() {
       break;
     }
     if (--counter == 0) {
-      counter = std::min(n_, 1000);
+      counter = std::min(n_, shrink_at_start_ ? kWarmShrinkEvery : 1000);
       if (opt_.shrinking) shrink();
     }
     int i = -1, j = -1;
@@ -515,8 +518,7 @@ SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
     cache = WorkspaceAccess::take(*workspace, X, y, kernel, opt.cache_mb, warm, layout);
   } else {
     cache = std::make_unique<KernelCache>(static_cast<int>(X.cols()), opt.cache_mb);
-    layout.order.resize(X.cols());
-    for (Eigen::Index i = 0; i < X.cols(); ++i) layout.order[i] = static_cast<int>(i);
+    layout.order = identityOrder(X.cols());
   }
   KernelColumns data(X, kernel, layout.order);
   SmoSolver solver(data, *cache, layout.order, y, C, opt);

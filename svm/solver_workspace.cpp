@@ -16,12 +16,6 @@ SolverWorkspace& SolverWorkspace::operator=(SolverWorkspace&&) noexcept = defaul
 
 namespace {
 
-std::vector<int> identityOrder(int n) {
-  std::vector<int> order(n);
-  for (int i = 0; i < n; ++i) order[i] = i;
-  return order;
-}
-
 // Lays the new samples out so that each kept sample (same label, same coordinates) sits where it
 // ended in the last solve; the others fill the remaining positions. Drops the columns of the rest
 // and recomputes, in every column kept, the rows of the samples that are new at their position.
