@@ -95,14 +95,22 @@ SVMP_INLINE void reduceLanes(typename V<L>::D best, typename V<L>::D idx, double
   }
 }
 
-template <int L>
-SVMP_INLINE ArgMax selectIImpl(int m, const double* up, const double* yG) {
+// max_t up[t] - yG[t] with its index; kUpdate: first yG[t] += wi Ki[t] + wj Kj[t] (the gradient
+// update), so the next iteration's i comes out of the same pass with the same lanes and tie rule.
+template <int L, bool kUpdate>
+SVMP_INLINE ArgMax maxUpMinusYG(int m, double* yG, const float* Ki, const float* Kj, double wi,
+                                double wj, const double* up) {
   using D = typename V<L>::D;
+  const D vwi = splat<L>(wi), vwj = splat<L>(wj), step = splat<L>(L);
   D best = splat<L>(-kInf), idx = splat<L>(-1), tv = iota<L>(0);
-  const D step = splat<L>(L);
   int t = 0;
   for (; t + L <= m; t += L) {
-    const D v = load<L>(up + t) - load<L>(yG + t);
+    D g = load<L>(yG + t);
+    if constexpr (kUpdate) {
+      g += vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t);
+      store<L>(yG + t, g);
+    }
+    const D v = load<L>(up + t) - g;
     const auto better = v > best;
     best = better ? v : best;
     idx = better ? tv : idx;
@@ -111,6 +119,8 @@ SVMP_INLINE ArgMax selectIImpl(int m, const double* up, const double* yG) {
   ArgMax r{-kInf, -1};
   reduceLanes<L, true>(best, idx, r.value, r.index);
   for (; t < m; ++t) {
+    if constexpr (kUpdate)
+      yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
     const double v = up[t] - yG[t];
     if (v > r.value) {
       r.value = v;
@@ -119,6 +129,18 @@ SVMP_INLINE ArgMax selectIImpl(int m, const double* up, const double* yG) {
   }
   if (r.value == -kInf) r.index = -1;
   return r;
+}
+
+// yG is only read here.
+template <int L>
+SVMP_INLINE ArgMax selectIImpl(int m, const double* up, const double* yG) {
+  return maxUpMinusYG<L, false>(m, const_cast<double*>(yG), nullptr, nullptr, 0.0, 0.0, up);
+}
+
+template <int L>
+SVMP_INLINE ArgMax updateGradientSelectIImpl(int m, double* yG, const float* Ki, const float* Kj,
+                                             double wi, double wj, const double* up) {
+  return maxUpMinusYG<L, true>(m, yG, Ki, Kj, wi, wj, up);
 }
 
 // Entries [t, m) of selectJ one at a time, after the vector lanes were reduced into r.
@@ -188,38 +210,6 @@ SVMP_INLINE void updateGradientImpl(int m, double* yG, const float* Ki, const fl
   for (; t + L <= m; t += L)
     store<L>(yG + t, load<L>(yG + t) + (vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t)));
   for (; t < m; ++t) yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
-}
-
-// updateGradientImpl, then selectIImpl over the updated entries in the same pass (same lanes and
-// tie rule, so the same result as the two loops one after the other).
-template <int L>
-SVMP_INLINE ArgMax updateGradientSelectIImpl(int m, double* yG, const float* Ki, const float* Kj,
-                                             double wi, double wj, const double* up) {
-  using D = typename V<L>::D;
-  const D vwi = splat<L>(wi), vwj = splat<L>(wj), step = splat<L>(L);
-  D best = splat<L>(-kInf), idx = splat<L>(-1), tv = iota<L>(0);
-  int t = 0;
-  for (; t + L <= m; t += L) {
-    const D g = load<L>(yG + t) + (vwi * load<L>(Ki + t) + vwj * load<L>(Kj + t));
-    store<L>(yG + t, g);
-    const D v = load<L>(up + t) - g;
-    const auto better = v > best;
-    best = better ? v : best;
-    idx = better ? tv : idx;
-    tv += step;
-  }
-  ArgMax r{-kInf, -1};
-  reduceLanes<L, true>(best, idx, r.value, r.index);
-  for (; t < m; ++t) {
-    yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
-    const double v = up[t] - yG[t];
-    if (v > r.value) {
-      r.value = v;
-      r.index = t;
-    }
-  }
-  if (r.value == -kInf) r.index = -1;
-  return r;
 }
 
 // Two vectors per step: the exponential is a long dependency chain, two chains hide its latency.
