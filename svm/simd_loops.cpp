@@ -1,5 +1,6 @@
-// Vectors wider than the baseline ISA are only used inside target("avx2") / target("avx512f") functions (and in the
-// always-inlined exponential of svm/fast_exp.hpp they call), so no ABI for them is ever used.
+// Vectors wider than the baseline ISA are only used inside target("avx2") / target("avx512f")
+// functions (and in the always-inlined exponential of svm/fast_exp.hpp they call), so no ABI for
+// them is ever used.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 #include "svm/simd_loops.hpp"
@@ -408,8 +409,8 @@ SVMP_AVX512 SelectJ selectJAvx512(int m, const double* low, const double* yG, co
   return r;
 }
 #pragma GCC diagnostic pop
-SVMP_AVX512 void updateGradientAvx512(int m, double* yG, const float* Ki, const float* Kj, double wi,
-                                      double wj) {
+SVMP_AVX512 void updateGradientAvx512(int m, double* yG, const float* Ki, const float* Kj,
+                                      double wi, double wj) {
   updateGradientImpl<8>(m, yG, Ki, Kj, wi, wj);
 }
 SVMP_AVX512 ArgMax updateGradientSelectIAvx512(int m, double* yG, const float* Ki,

@@ -1,9 +1,9 @@
 // The O(n) loops of one SMO iteration split across OpenMP threads (SolverOptions::threads), for
-// problems large enough that it pays: each thread takes one contiguous chunk (a multiple of 8 entries,
-// so the vector lanes see the same entries), and the working-set choices are merged by value, then
-// smallest index, which is the serial loops' tie rule. Element-wise loops give the same bits for any
-// thread count; the argmin of selectJ may break an exact-rounding tie differently (same thread count,
-// same result).
+// problems large enough that it pays: each thread takes one contiguous chunk (a multiple of 8
+// entries, so the vector lanes see the same entries), and the working-set choices are merged by
+// value, then smallest index, which is the serial loops' tie rule. Element-wise loops give the same
+// bits for any thread count; the argmin of selectJ may break an exact-rounding tie differently
+// (same thread count, same result).
 #pragma once
 
 #include <omp.h>
@@ -15,7 +15,8 @@
 
 namespace svmp::svm::parallel {
 
-// f(begin, end, chunk) for the chunks of [0, m); serial (one chunk) below min_size or with 1 thread.
+// f(begin, end, chunk) for the chunks of [0, m); serial (one chunk) below min_size or with 1
+// thread.
 template <class F>
 void forChunks(int m, int threads, int min_size, F&& f) {
   if (threads <= 1 || m < min_size) {

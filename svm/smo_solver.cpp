@@ -147,7 +147,8 @@ class SmoSolver {
     });
     return parallel::mergeSelectJ(part_j_, part_offset_);
   }
-  loops::ArgMax updateGradientSelectI(int m, const float* Ki, const float* Kj, double wi, double wj) {
+  loops::ArgMax updateGradientSelectI(int m, const float* Ki, const float* Kj, double wi,
+                                      double wj) {
     resetParts();
     parallel::forChunks(m, opt_.threads, opt_.parallel_min_samples, [&](int b, int e, int c) {
       part_offset_[c] = b;
@@ -423,7 +424,8 @@ double SmoSolver::violation() const {
 
 SolverResult SmoSolver::run() {
   // libsvm shrinks every 1000 iterations; a warm start often finishes in fewer, so it shrinks every
-  // 100 (d = 2: the active set 10,000 -> 3,000 and 17% less time; d = 6: 0-8%; 300 and 30 were worse).
+  // 100 (d = 2: the active set 10,000 -> 3,000 and 17% less time; d = 6: 0-8%; 300 and 30 were
+  // worse).
   constexpr int kWarmShrinkEvery = 100;
   for (int i = 0; i < n_; ++i) updateMasks(i);
   SolverResult result;

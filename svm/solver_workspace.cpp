@@ -62,7 +62,8 @@ void carryOver(KernelCache& cache, const std::vector<int>& old_order, const Eige
 
   // Rows of the fresh samples in every column kept: one short kernel row each.
   Eigen::MatrixXd fresh_X(X.rows(), static_cast<Eigen::Index>(fresh_positions.size()));
-  for (size_t f = 0; f < fresh_positions.size(); ++f) fresh_X.col(f) = X.col(owner[fresh_positions[f]]);
+  for (size_t f = 0; f < fresh_positions.size(); ++f)
+    fresh_X.col(f) = X.col(owner[fresh_positions[f]]);
   std::vector<float> row(fresh_positions.size());
   if (!fresh_positions.empty()) {
     const KernelColumns fresh(fresh_X, kernel);
@@ -71,9 +72,9 @@ void carryOver(KernelCache& cache, const std::vector<int>& old_order, const Eige
       float* column = cache.cached(t, &len);
       if (len == 0) continue;
       ++layout.reused_columns;
-      const int rows = static_cast<int>(
-          std::lower_bound(fresh_positions.begin(), fresh_positions.end(), len) -
-          fresh_positions.begin());
+      const int rows =
+          static_cast<int>(std::lower_bound(fresh_positions.begin(), fresh_positions.end(), len) -
+                           fresh_positions.begin());
       fresh.compute(X.col(owner[t]).data(), 0, rows, row.data());
       for (int r = 0; r < rows; ++r) column[fresh_positions[r]] = row[r];
       layout.patched_rows += rows;

@@ -135,7 +135,8 @@ TEST(WarmStart, WorkspaceKeepsColumnsAndReachesTheSameOptimum) {
     const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), 10.0);
     // moved + removed + added and shuffled; only removed (kept samples past the new end move);
     // only added (the problem grows past the cached columns).
-    const std::vector<Edited> edits = {edit(p, 60 + d, y, 0.05, 7), removeAndAdd(p, y, 7, 0, 60 + d),
+    const std::vector<Edited> edits = {edit(p, 60 + d, y, 0.05, 7),
+                                       removeAndAdd(p, y, 7, 0, 60 + d),
                                        removeAndAdd(p, y, 0, 400, 60 + d)};
     for (size_t c = 0; c < edits.size(); ++c) {
       const Edited& e = edits[c];
