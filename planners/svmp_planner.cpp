@@ -295,8 +295,8 @@ bool SvmpPlanner::makeRoadmap(PhaseTimes& times, const Termination& stop) {
   return done;
 }
 
-bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng,
-                         const Termination& stop, std::string& why) {
+bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, double widen,
+                         cspace::Rng& rng, const Termination& stop, std::string& why) {
   // Frontier of a component: its node closest to a node outside it. Random configurations around the
   // segment between the two are guided down to the decision boundaries (thesis ch. 3.5).
   const Eigen::VectorXd& scale = context_.space.metricScale();
@@ -318,7 +318,8 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, csp
     for (int i = 0; i < with_query.numNodes(); ++i)
       if (with_query.connected(endpoint, i)) consider(with_query.node(i));
     if (a.size() == 0) continue;
-    const double spread = 0.5 * best;  // local to the disconnection: the pair is its narrowest point
+    // Local to the disconnection (the pair is its narrowest point), wider after rounds without progress.
+    const double spread = 0.5 * best * widen;
     for (int s = 0; s < options_.repair_samples / 2; ++s) {
       Eigen::VectorXd q = a + unit(rng) * (b - a);
       for (int d = 0; d < q.size(); ++d) q[d] += spread * normal(rng) / scale[d];
@@ -377,6 +378,12 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   const auto t0 = Clock::now();
   cspace::Rng rng(seed ^ 0xA5A5A5A5ULL);
   std::string why = options_.repair_rounds == 0 ? "repair_rounds is 0" : "";  // why still not connected
+  // A round that grows the start's or the goal's component is progress and costs no budget (up to
+  // kMaxRoundsFactor x repair_rounds rounds in all); one without progress spends a round and doubles
+  // the spread of the next round's samples (up to 8x).
+  constexpr int kMaxRoundsFactor = 4;
+  int spent = 0, last_size = -1;
+  double widen = 1.0;
   for (int round = 0;; ++round) {
     Roadmap with_query = roadmap_;
     QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_);
@@ -387,24 +394,42 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       result.status = PlanStatus::kSolved;
       break;
     }
-    const bool repaired = round < options_.repair_rounds && !stop() &&
-                          repair(with_query, outcome.start_node, outcome.goal_node, rng, stop, why);
+    int start_size = 0, goal_size = 0;
+    for (int i = 0; i < with_query.numNodes(); ++i) {
+      start_size += with_query.connected(i, outcome.start_node);
+      goal_size += with_query.connected(i, outcome.goal_node);
+    }
+    if (round > 0) {
+      if (start_size + goal_size > last_size) {
+        widen = 1.0;
+      } else {
+        ++spent;
+        widen = std::min(8.0, 2.0 * widen);
+      }
+    }
+    last_size = start_size + goal_size;
+    const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
+    const bool repaired =
+        budget && !stop() &&
+        repair(with_query, outcome.start_node, outcome.goal_node, widen, rng, stop, why);
     if (stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
       break;
     }
     if (!repaired) {
-      int start_size = 0, goal_size = 0;
-      for (int i = 0; i < with_query.numNodes(); ++i) {
-        start_size += with_query.connected(i, outcome.start_node);
-        goal_size += with_query.connected(i, outcome.goal_node);
+      if (!budget && options_.repair_rounds > 0) {
+        const std::string stopped =
+            spent >= options_.repair_rounds
+                ? std::to_string(spent) + " rounds without progress"
+                : "the limit of " + std::to_string(kMaxRoundsFactor * options_.repair_rounds) + " rounds";
+        why = why.empty() ? stopped : stopped + "; " + why;
       }
       result.status = PlanStatus::kFailed;
-      result.message = "start and goal are not connected after " + std::to_string(round) + " of " +
-                       std::to_string(options_.repair_rounds) + " repair rounds (their components hold " +
-                       std::to_string(start_size) + " and " + std::to_string(goal_size) + " of " +
-                       std::to_string(with_query.numNodes()) + " nodes" + (why.empty() ? "" : "; " + why) + ")";
+      result.message = "start and goal are not connected after " + std::to_string(round) +
+                       " repair rounds (their components hold " + std::to_string(start_size) + " and " +
+                       std::to_string(goal_size) + " of " + std::to_string(with_query.numNodes()) +
+                       " nodes; " + why + ")";
       break;
     }
   }

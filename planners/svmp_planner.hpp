@@ -34,7 +34,9 @@ struct SvmpOptions {
   double descent_step = -1;       // longest descent step (weighted metric); <= 0: sigma
   int descent_iterations = 100;
   double duplicate_radius = -1;   // milestones closer than this are merged; < 0: step / 2
-  int repair_rounds = 5;          // query repair rounds (0 disables)
+  // Query repair rounds without progress allowed (0 disables repair); a round that grows the start's
+  // or goal's component costs none, up to 4 x repair_rounds rounds in all.
+  int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
   bool sample_self_collision = true;  // the self-collision region is one more class
@@ -97,8 +99,8 @@ class SvmpPlanner final : public Planner {
                     const Termination& stop, bool keep_free_starts = false);
   // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
   // round added nothing.
-  bool repair(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng, const Termination& stop,
-              std::string& why);
+  bool repair(Roadmap& with_query, int start_node, int goal_node, double widen, cspace::Rng& rng,
+              const Termination& stop, std::string& why);
   // A descended milestone that collides lies where the SVM boundary, smooth at the scale sigma, misses
   // a passage narrower than sigma. Along the boundary's normal (grad F_k) within sigma, find the free
   // interval nearest to it (doubling steps from resolution/4, then bisection of both edges) and return

@@ -2,6 +2,8 @@
 // narrow passage that SVMP's boundary milestones are made for.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include "planners/path_simplifier.hpp"
 #include "planners/prm_planner.hpp"
 #include "planners/roadmap_builder.hpp"
@@ -242,6 +244,34 @@ TEST(NarrowPassage, SvmpSolvesEverySeed) {
   EXPECT_EQ(svmp_solved, 5);
   std::printf("[ info     ] narrow passage: svmp solved %d/5 (%d strictly valid at 1/4 resolution), "
               "prm (300 samples) %d/5\n", svmp_solved, strict, prm_solved);
+}
+
+// Repair keeps going while the start's or goal's component grows and says why it stopped: the
+// component sizes and one of: rounds without progress, the round limit, or the last round's guided
+// samples giving no free milestone (or no repair at all).
+TEST(NarrowPassage, SvmpRepairSaysWhyItStopped) {
+  const std::regex why(
+      "start and goal are not connected after [0-9]+ repair rounds \\(their components hold [0-9]+ and "
+      "[0-9]+ of [0-9]+ nodes; ([0-9]+ rounds without progress|the limit of [0-9]+ rounds|"
+      "repair_rounds is 0|no node outside .*)(; the last round's [0-9]+ guided samples gave no new "
+      "free milestone)?\\)");
+  int failures = 0;
+  for (const char* rounds : {"0", "2"}) {
+    auto w = makeWorld(gapScenario(0.001, std::string("  svmp: {sigma: 0.02, C: 100, step: 0.02, "
+                                                      "samples_per_tree: 100, k: 5, repair_rounds: ") +
+                                              rounds + "}\n"));
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+      const PlanResult r = w->planner("svmp")->solve(w->query(), seed);
+      if (r.solved()) continue;
+      ++failures;
+      EXPECT_EQ(r.status, PlanStatus::kFailed);
+      EXPECT_TRUE(std::regex_match(r.message, why)) << r.message;
+      if (std::string(rounds) == "0") {
+        EXPECT_NE(r.message.find("repair_rounds is 0"), std::string::npos);
+      }
+    }
+  }
+  EXPECT_GT(failures, 0);  // the test must see the message
 }
 
 }  // namespace
