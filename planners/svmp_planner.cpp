@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <set>
 
 #include "planners/planner_registry.hpp"
 #include "planners/class_colouring.hpp"
@@ -28,6 +29,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.duplicate_radius = params.getDouble("duplicate_radius", o.duplicate_radius, 0, 1e6);
   o.repair_rounds = static_cast<int>(params.getInt("repair_rounds", o.repair_rounds, 0, 1000));
   o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
+  o.interior_fraction = params.getDouble("interior_fraction", o.interior_fraction, 0, 1);
   o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
   o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
   o.kernel = params.getString("kernel", o.kernel, {"rbf", "fk"});
@@ -47,6 +49,8 @@ std::string SvmpOptions::validate() const {
   if (classes != "auto" && classes != "obstacle" && classes != "colour")
     return "classes must be auto, obstacle or colour, got " + classes;
   if (!std::isfinite(fk_sigma)) return "fk_sigma must be finite";
+  if (!(interior_fraction >= 0 && interior_fraction <= 1))
+    return "interior_fraction must be in [0, 1], got " + std::to_string(interior_fraction);
   return "";
 }
 
@@ -137,8 +141,26 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
     if (one) class_of_label_.begin()->second = 2;
   } else
     for (const auto& [label, w] : weights) class_of_label_[label] = label;
-  std::vector<int> classes(samples_.labels.size());
-  for (size_t i = 0; i < classes.size(); ++i) classes[i] = class_of_label_.at(samples_.labels[i]);
+  // Every boundary sample, each obstacle's first sample (so no class is left without one) and an
+  // evenly spread share of the interior ones (deterministic).
+  std::vector<int> kept;
+  std::set<int> seen;
+  double due = 0.0;
+  for (int i = 0; i < samples_.size(); ++i) {
+    const bool first = seen.insert(samples_.labels[i]).second;
+    if (!samples_.boundary[i] && !first) {
+      due += options_.interior_fraction;
+      if (due < 1.0) continue;
+      due -= 1.0;
+    }
+    kept.push_back(i);
+  }
+  Eigen::MatrixXd points(samples_.points.rows(), static_cast<Eigen::Index>(kept.size()));
+  std::vector<int> classes(kept.size());
+  for (size_t j = 0; j < kept.size(); ++j) {
+    points.col(static_cast<Eigen::Index>(j)) = samples_.points.col(kept[j]);
+    classes[j] = class_of_label_.at(samples_.labels[kept[j]]);
+  }
   std::map<int, double> class_weights;
   for (const auto& [label, w] : weights) {
     double& cw = class_weights[class_of_label_.at(label)];
@@ -148,7 +170,7 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   const robots::Robot& robot = context_.checker.robot();
   const double reach = robot.jointReach().size() > 0 ? robot.jointReach()[0] : 0.0;
   const double fk_sigma = options_.fk_sigma > 0 ? options_.fk_sigma : reach > 0 ? 0.05 * reach : 0.1;
-  risk_.emplace(RiskFunction::trainOneVsRest(samples_.points, classes, fk ? fk_sigma : options_.sigma,
+  risk_.emplace(RiskFunction::trainOneVsRest(points, classes, fk ? fk_sigma : options_.sigma,
                                              options_.C, class_weights, solver, context_.space.metricScale(),
                                              options_.truncated, context_.threads,
                                              fk ? &robot : nullptr));

@@ -246,6 +246,26 @@ TEST(NarrowPassage, SvmpSolvesEverySeed) {
               "prm (300 samples) %d/5\n", svmp_solved, strict, prm_solved);
 }
 
+// The SVMs train on every boundary sample and a share of the interior ones: fewer support vectors,
+// the same passage found; a share outside [0, 1] names the field.
+TEST(NarrowPassage, SvmpTrainsOnAShareOfTheInterior) {
+  const std::string params = "  svmp: {sigma: 0.04, C: 100, step: 0.05, samples_per_tree: 300, k: 10, interior_fraction: ";
+  auto all = makeWorld(gapScenario(0.02, params + "1}\n"));
+  auto share = makeWorld(gapScenario(0.02, params + "0.1}\n"));
+  const PlanResult a = all->planner("svmp")->solve(all->query(), 3);
+  const PlanResult b = share->planner("svmp")->solve(share->query(), 3);
+  ASSERT_TRUE(a.solved()) << a.message;
+  ASSERT_TRUE(b.solved()) << b.message;
+  EXPECT_LT(b.support_vectors, a.support_vectors);
+  EXPECT_TRUE(pathIsValid(*share, b.path, share->scenario.resolution));
+  try {
+    makeWorld(gapScenario(0.02, params + "2}\n"))->planner("svmp");
+    FAIL() << "interior_fraction 2 accepted";
+  } catch (const cspace::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("interior_fraction"), std::string::npos) << e.what();
+  }
+}
+
 // Repair keeps going while the start's or goal's component grows and says why it stopped: the
 // component sizes and one of: rounds without progress, the round limit, or the last round's guided
 // samples giving no free milestone (or no repair at all).
