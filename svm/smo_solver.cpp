@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -526,10 +527,13 @@ SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
   SmoSolver solver(data, *cache, layout.order, y, C, opt);
   WarmStartCounts counts;
   if (warm != nullptr) {
-    // The start is computed in sample order (its kernel rows need no cache).
-    const KernelColumns in_order(X, kernel);
+    // The start is computed in sample order (its kernel rows need no cache): `data` is in that order
+    // unless a workspace carried its layout over.
+    std::optional<KernelColumns> in_order;
+    if (!std::is_sorted(layout.order.begin(), layout.order.end())) in_order.emplace(X, kernel);
     Eigen::VectorXd alpha, G, G_bar;
-    counts = detail::initialiseFromWarmStart(*warm, X, y, C, in_order, alpha, G, G_bar);
+    counts = detail::initialiseFromWarmStart(*warm, X, y, C, in_order ? *in_order : data, alpha, G,
+                                             G_bar);
     solver.setStart(alpha, G, G_bar);
   }
   SolverResult result = solver.run();
