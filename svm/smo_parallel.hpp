@@ -32,23 +32,22 @@ void forChunks(int m, int threads, int min_size, F&& f) {
   }
 }
 
-// Partial results of chunks (indices relative to the chunk) merged into one.
+// Partial results of chunks (indices relative to the chunk; chunk 0 starts at 0) merged into one;
+// chunks in order and strict comparisons keep the smallest index on ties.
 inline loops::ArgMax mergeMax(const std::vector<loops::ArgMax>& parts,
                               const std::vector<int>& offsets) {
-  loops::ArgMax best{parts[0].value, -1};
-  for (size_t c = 0; c < parts.size(); ++c) {
+  loops::ArgMax best = parts[0];
+  for (size_t c = 1; c < parts.size(); ++c) {
     if (parts[c].index < 0) continue;
-    const int index = parts[c].index + offsets[c];
-    if (best.index < 0 || parts[c].value > best.value) best = {parts[c].value, index};
+    if (best.index < 0 || parts[c].value > best.value)
+      best = {parts[c].value, parts[c].index + offsets[c]};
   }
-  if (best.index < 0) best.value = parts[0].value;
   return best;
 }
 
 inline loops::SelectJ mergeSelectJ(const std::vector<loops::SelectJ>& parts,
                                    const std::vector<int>& offsets) {
   loops::SelectJ best = parts[0];
-  best.j = parts[0].j;
   for (size_t c = 1; c < parts.size(); ++c) {
     best.gmax2 = std::max(best.gmax2, parts[c].gmax2);
     if (parts[c].j < 0) continue;

@@ -65,26 +65,19 @@ void carryOver(KernelCache& cache, const std::vector<int>& old_order, const Eige
   for (size_t f = 0; f < fresh_positions.size(); ++f)
     fresh_X.col(f) = X.col(owner[fresh_positions[f]]);
   std::vector<float> row(fresh_positions.size());
-  if (!fresh_positions.empty()) {
-    const KernelColumns fresh(fresh_X, kernel);
-    for (int t = 0; t < n; ++t) {
-      int len = 0;
-      float* column = cache.cached(t, &len);
-      if (len == 0) continue;
-      ++layout.reused_columns;
-      const int rows =
-          static_cast<int>(std::lower_bound(fresh_positions.begin(), fresh_positions.end(), len) -
-                           fresh_positions.begin());
-      fresh.compute(X.col(owner[t]).data(), 0, rows, row.data());
-      for (int r = 0; r < rows; ++r) column[fresh_positions[r]] = row[r];
-      layout.patched_rows += rows;
-    }
-  } else {
-    for (int t = 0; t < n; ++t) {
-      int len = 0;
-      cache.cached(t, &len);
-      layout.reused_columns += len > 0;
-    }
+  const KernelColumns fresh(fresh_X, kernel);
+  for (int t = 0; t < n; ++t) {
+    int len = 0;
+    float* column = cache.cached(t, &len);
+    if (len == 0) continue;
+    ++layout.reused_columns;
+    const int rows =
+        static_cast<int>(std::lower_bound(fresh_positions.begin(), fresh_positions.end(), len) -
+                         fresh_positions.begin());
+    if (rows == 0) continue;
+    fresh.compute(X.col(owner[t]).data(), 0, rows, row.data());
+    for (int r = 0; r < rows; ++r) column[fresh_positions[r]] = row[r];
+    layout.patched_rows += rows;
   }
   layout.order.assign(owner.begin(), owner.begin() + n);
 }
