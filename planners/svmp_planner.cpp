@@ -1,6 +1,7 @@
 #include "planners/svmp_planner.hpp"
 
 #include <atomic>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -179,8 +180,8 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
 }
 
 int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
-                               const Termination& stop, bool keep_free_starts) {
-  const int n = static_cast<int>(starts.size());
+                               const Termination& stop, bool keep_free_starts, double duplicate_radius) {
+  int n = static_cast<int>(starts.size());
   std::vector<Eigen::VectorXd> ends(n);
   std::vector<int> end_class(n);
   const DescentOptions descent = options_.descent();
@@ -200,9 +201,18 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
     end_class[i] = k;
   }
   if (stopped) return 0;
+  // With keep_free_starts the starts themselves are candidates too (raw: no centring).
+  std::vector<char> raw(n, 0);
+  if (keep_free_starts) {
+    ends.insert(ends.end(), starts.begin(), starts.end());
+    end_class.insert(end_class.end(), end_class.begin(), end_class.end());
+    raw.resize(2 * n, 1);
+    n *= 2;
+  }
   // Near-duplicates are dropped before any collision check, in a fixed order (deterministic).
   const Eigen::VectorXd& scale = context_.space.metricScale();
-  const double r2 = options_.duplicate_radius * options_.duplicate_radius;
+  if (duplicate_radius < 0) duplicate_radius = options_.duplicate_radius;
+  const double r2 = duplicate_radius * duplicate_radius;
   Eigen::MatrixXd kept(scale.size(), roadmap_.numNodes() + n);
   int count = 0;
   for (const auto& q : roadmap_.nodes()) kept.col(count++) = q.cwiseProduct(scale);
@@ -219,14 +229,11 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
 #pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
   for (int f = 0; f < static_cast<int>(fresh.size()); ++f) {
     valid[f] = context_.checker.isValid(ends[fresh[f]]);
-    if (valid[f]) continue;
+    if (valid[f] || raw[fresh[f]]) continue;
     std::optional<Eigen::VectorXd> centre;
     if (options_.centre_in_passage) centre = centreAlongNormal(end_class[fresh[f]], ends[fresh[f]]);
     if (centre) {
       ends[fresh[f]] = *centre;
-      valid[f] = 1;
-    } else if (keep_free_starts && context_.checker.isValid(starts[fresh[f]])) {
-      ends[fresh[f]] = starts[fresh[f]];
       valid[f] = 1;
     }
   }
@@ -265,47 +272,116 @@ std::optional<Eigen::VectorXd> SvmpPlanner::centreAlongNormal(int k, const Eigen
     return p;
   };
   auto free = [&](double t) { return context_.checker.isValid(at(t)); };
-  const double first = context_.validator.resolution() / 4;
-  // Nearest free offset on either side, by doubling.
-  double inside = 0, outside = 0;
-  bool found = false;
-  for (double t = first; t <= options_.sigma && !found; t *= 2)
-    for (double signed_t : {t, -t})
-      if (free(signed_t)) {
-        outside = signed_t;
-        inside = t == first ? 0 : signed_t / 2;  // blocked: tested one doubling earlier
-        found = true;
+  const double first = context_.validator.resolution() / 4, tolerance = first / 8;
+  const double sigma = options_.sigma;
+  // The last free offset from the free offset t0 going the way of `sign` (steps doubling from
+  // `first`, then bisection); empty when all is free within sigma of q.
+  auto edge = [&](double t0, double sign) -> std::optional<double> {
+    double clear = t0, blocked = t0;
+    for (double step = first;; step *= 2) {
+      const double probe = t0 + sign * step;
+      if (std::abs(probe) > sigma) return std::nullopt;
+      if (!free(probe)) {
+        blocked = probe;
         break;
       }
-  if (!found) return std::nullopt;
-  const double tolerance = first / 8;
-  // Entry edge: between `inside` (blocked or q) and `outside` (free).
-  double blocked = inside, clear = outside;
-  while (std::abs(clear - blocked) > tolerance) {
-    const double mid = 0.5 * (blocked + clear);
-    (free(mid) ? clear : blocked) = mid;
-  }
-  const double entry = clear;
-  // Exit edge: keep going the same way until blocked (or sigma), then bisect.
-  const double sign = outside > 0 ? 1 : -1;
-  double last_free = outside, probe = outside;
-  while (std::abs(probe) < options_.sigma) {
-    probe = sign * std::min(options_.sigma, 2 * std::abs(probe));
-    if (!free(probe)) break;
-    last_free = probe;
-  }
-  double exit = last_free;
-  if (probe != last_free) {
-    double lo = last_free, hi = probe;
-    while (std::abs(hi - lo) > tolerance) {
-      const double mid = 0.5 * (lo + hi);
-      (free(mid) ? lo : hi) = mid;
+      clear = probe;
     }
-    exit = lo;
+    while (std::abs(blocked - clear) > tolerance) {
+      const double mid = 0.5 * (blocked + clear);
+      (free(mid) ? clear : blocked) = mid;
+    }
+    return clear;
+  };
+  std::optional<double> entry, exit;
+  if (free(0)) {
+    entry = edge(0, -1);
+    exit = edge(0, 1);
+    if (!entry || !exit) return q;  // not in a passage narrower than 2 sigma
+  } else {
+    // The nearest free offset on either side, by doubling; the passage extends from it both ways.
+    double outside = 0;
+    for (double t = first; t <= sigma && outside == 0; t *= 2)
+      for (double signed_t : {t, -t})
+        if (free(signed_t)) {
+          outside = signed_t;
+          break;
+        }
+    if (outside == 0) return std::nullopt;
+    const double sign = outside > 0 ? 1 : -1;
+    entry = edge(outside, -sign);
+    exit = edge(outside, sign).value_or(sign * sigma);
+    if (!entry) return std::nullopt;
   }
-  const Eigen::VectorXd centre = at(0.5 * (entry + exit));
+  const Eigen::VectorXd centre = at(0.5 * (*entry + *exit));
   if (!context_.checker.isValid(centre)) return std::nullopt;
   return centre;
+}
+
+int SvmpPlanner::nearestBoundary(const Eigen::VectorXd& q) const {
+  int k = 0;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < risk_->numClasses(); ++c)
+    if (const double r = risk_->risk(c, q); r < lowest) lowest = r, k = c;
+  return k;
+}
+
+int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
+  constexpr int kMaxDepth = 8, kMaxSplits = 32;
+  int splits = 0, added = 0;
+  const DescentOptions descent = options_.descent();
+  const Eigen::VectorXd& scale = context_.space.metricScale();
+  // Proved where the query will prove it: at a passage's mouth the sampled check may cut a corner.
+  const cspace::MotionValidator& segment = context_.certifier ? *context_.certifier : context_.validator;
+  // From `from` towards `to` within the boundary's tangent plane at `from`: inside a passage the
+  // boundary runs along it, so this follows the passage out of its mouth.
+  auto tangentStep = [&](const Eigen::VectorXd& from, const Eigen::VectorXd& to) -> std::optional<Eigen::VectorXd> {
+    const int k = nearestBoundary(from);
+    Eigen::VectorXd grad(from.size());
+    risk_->decisionAndGradient(k, from, grad);
+    Eigen::VectorXd normal = grad.cwiseQuotient(scale);
+    if (!(normal.norm() > 0)) return std::nullopt;
+    normal.normalize();
+    Eigen::VectorXd x = (to - from).cwiseProduct(scale);
+    x -= x.dot(normal) * normal;
+    Eigen::VectorXd m = from + x.cwiseQuotient(scale);
+    context_.space.clamp(m);
+    return centreAlongNormal(k, m);
+  };
+  // The middle pulled onto the nearest boundary (centred in the passage when it collides there).
+  auto boundaryMiddle = [&](const Eigen::VectorXd& pa, const Eigen::VectorXd& pb) {
+    const Eigen::VectorXd middle = 0.5 * (pa + pb);
+    const int k = nearestBoundary(middle);
+    return centreAlongNormal(k, risk_->descend(k, middle, context_.space, descent).q);
+  };
+  // A blocked a-b is split at a point nearer to both ends, and each half linked the same way. The
+  // split point is tried as a tangent step from either end, then as the boundary middle.
+  std::function<bool(const Eigen::VectorXd&, int, const Eigen::VectorXd&, int, int)> link =
+      [&](const Eigen::VectorXd& pa, int ia, const Eigen::VectorXd& pb, int ib, int depth) {
+        const double length = context_.space.distance(pa, pb);
+        if (segment.isValid(pa, pb)) {
+          if (ia >= 0 && ib >= 0) {
+            roadmap_.addEdge(ia, ib, length);
+            if (context_.certifier) roadmap_.markCertified(ia, ib);
+          }
+          return true;
+        }
+        if (depth == 0) return false;
+        auto nearer = [&](const std::optional<Eigen::VectorXd>& m) {
+          return m && context_.space.distance(pa, *m) < length && context_.space.distance(*m, pb) < length;
+        };
+        std::optional<Eigen::VectorXd> m;
+        for (int attempt = 0; attempt < 3 && !nearer(m); ++attempt) {
+          if (++splits > kMaxSplits) return false;
+          m = attempt == 0 ? tangentStep(pb, pa) : attempt == 1 ? tangentStep(pa, pb) : boundaryMiddle(pa, pb);
+        }
+        if (!nearer(m)) return false;
+        const int im = roadmap_.addNode(*m);
+        ++added;
+        return link(pa, ia, *m, im, depth - 1) && link(*m, im, pb, ib, depth - 1);
+      };
+  link(a, a_node, roadmap_.node(b_node), b_node, kMaxDepth);
+  return added;
 }
 
 bool SvmpPlanner::makeRoadmap(PhaseTimes& times, const Termination& stop) {
@@ -326,20 +402,24 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const int search = std::min(nn_->size(), 4 * options_.k + 1);
+  std::vector<std::pair<int, int>> frontiers;  // (node of with_query, node of roadmap_)
+  double narrowest = std::numeric_limits<double>::infinity();
   for (int endpoint : {start_node, goal_node}) {
     double best = std::numeric_limits<double>::infinity();
     Eigen::VectorXd a, b;
-    auto consider = [&](const Eigen::VectorXd& from) {
-      for (int j : nn_->nearest(from, search)) {
+    int ia = -1, ib = -1;
+    for (int i = 0; i < with_query.numNodes(); ++i) {
+      if (!with_query.connected(endpoint, i)) continue;
+      for (int j : nn_->nearest(with_query.node(i), search)) {
         if (with_query.connected(endpoint, j)) continue;
-        const double d = context_.space.distance(from, roadmap_.node(j));
-        if (d < best) best = d, a = from, b = roadmap_.node(j);
+        const double d = context_.space.distance(with_query.node(i), roadmap_.node(j));
+        if (d < best) best = d, a = with_query.node(i), b = roadmap_.node(j), ia = i, ib = j;
         break;
       }
-    };
-    for (int i = 0; i < with_query.numNodes(); ++i)
-      if (with_query.connected(endpoint, i)) consider(with_query.node(i));
+    }
     if (a.size() == 0) continue;
+    frontiers.emplace_back(ia, ib);
+    narrowest = std::min(narrowest, best);
     // Local to the disconnection (the pair is its narrowest point), wider after rounds without progress.
     const double spread = 0.5 * best * widen;
     for (int s = 0; s < options_.repair_samples / 2; ++s) {
@@ -354,7 +434,14 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     return false;
   }
   const int old_n = roadmap_.numNodes();
-  if (addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true) == 0) {
+  int added = 0;
+  for (const auto& [ia, ib] : frontiers)
+    added += bridge(with_query.node(ia), ia < old_n ? ia : -1, ib);
+  // Milestones as close as a quarter of the disconnection: a passage narrower than the usual
+  // duplicate radius needs them.
+  added += addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true,
+                         std::min(options_.duplicate_radius, 0.25 * narrowest));
+  if (added == 0) {
     why = "the last round's " + std::to_string(starts.size()) + " guided samples gave no new free milestone";
     return true;  // another round draws new samples
   }

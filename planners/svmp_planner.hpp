@@ -101,11 +101,18 @@ class SvmpPlanner final : public Planner {
   // added.
   // Stops early (returning what it added) when `stop` fires.
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
-                    const Termination& stop, bool keep_free_starts = false);
+                    const Termination& stop, bool keep_free_starts = false, double duplicate_radius = -1);
   // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
   // round added nothing.
   bool repair(Roadmap& with_query, int start_node, int goal_node, double widen, cspace::Rng& rng,
               const Termination& stop, std::string& why);
+  // Links `a` (roadmap node a_node, or -1 for a query's endpoint) to node b_node along the decision
+  // boundary: a blocked segment is split at its middle pulled onto the boundary (and centred in the
+  // passage), recursively. Straight segments between milestones rarely thread a passage much
+  // narrower than sigma at its mouths, where the smooth boundary strays from the passage's centre.
+  // Returns how many milestones it added.
+  int bridge(const Eigen::VectorXd& a, int a_node, int b_node);
+  int nearestBoundary(const Eigen::VectorXd& q) const;  // the class k whose |F_k(q)| is smallest
   // A descended milestone that collides lies where the SVM boundary, smooth at the scale sigma, misses
   // a passage narrower than sigma. Along the boundary's normal (grad F_k) within sigma, find the free
   // interval nearest to it (doubling steps from resolution/4, then bisection of both edges) and return

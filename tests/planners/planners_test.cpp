@@ -266,6 +266,22 @@ TEST(NarrowPassage, SvmpTrainsOnAShareOfTheInterior) {
   }
 }
 
+// A gap of usable width 0.001, twenty times narrower than sigma and the duplicate radius: the SVM
+// boundary strays from the gap's centre at its mouths, so straight edges out of the gap clip a
+// corner. Repair bridges the disconnection along the boundary (tangent steps, centred in the gap)
+// and samples milestones closer than the duplicate radius: every seed solved, each path certified
+// and valid on a dense re-check.
+TEST(NarrowPassage, SvmpRepairThreadsAMillimetreGap) {
+  auto w = makeWorld(gapScenario(0.001, "  svmp: {sigma: 0.02, C: 100, step: 0.02, samples_per_tree: 300, k: 10}\n"));
+  w->certify();
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const PlanResult r = w->planner("svmp")->solve(w->query(), seed);
+    ASSERT_TRUE(r.solved()) << "seed " << seed << ": " << r.message;
+    EXPECT_TRUE(r.certified) << "seed " << seed;
+    EXPECT_TRUE(pathIsValid(*w, r.path)) << "seed " << seed;
+  }
+}
+
 // Repair keeps going while the start's or goal's component grows and says why it stopped: the
 // component sizes and one of: rounds without progress, the round limit, or the last round's guided
 // samples giving no free milestone (or no repair at all).

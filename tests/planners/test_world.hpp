@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
 #include "cspace/scenario/scenario.hpp"
@@ -21,14 +22,17 @@ struct World {
   cspace::ConfigurationSpace space;
   cspace::CollisionChecker checker;
   cspace::DiscreteMotionValidator validator;
-  PlanningContext context;
+  cspace::CertifiedMotionValidator certifier;
+  PlanningContext context;  // certifier unset; certify() sets it (as the driver does)
 
   World(const std::string& yaml, int threads)
       : scenario(cspace::parseScenario(yaml, "test.yaml")),
         space(scenario.makeSpace()),
         checker(scenario.robot, scenario.environment, scenario.self_collision),
         validator(checker, space, scenario.resolution),
+        certifier(checker, space, scenario.resolution),
         context{space, checker, validator, threads} {}
+  void certify() { context.certifier = &certifier; }
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
