@@ -78,8 +78,9 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
   scaled.col(0) = root.cwiseProduct(scale);
   Eigen::VectorXd q_rand(space.dim());
   const long max_iterations = static_cast<long>(options.max_iterations_factor) * n;
-  long iteration = 0;
-  while (static_cast<int>(tree.nodes.size()) < n && iteration++ < max_iterations) {
+  long iteration = 0, idle = 0;
+  while (static_cast<int>(tree.nodes.size()) < n && iteration++ < max_iterations &&
+         idle++ < static_cast<long>(options.max_idle_factor) * n) {
     if (stopRequested(options, iteration)) {
       tree.stopped = true;
       return tree;
@@ -91,8 +92,10 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
       scaled.col(static_cast<Eigen::Index>(tree.nodes.size())) = q_new.cwiseProduct(scale);
       tree.nodes.push_back(q_new);
       tree.boundary.push_back(0);
+      idle = 0;
     } else if (!tree.boundary[e]) {
       tree.boundary[e] = 1;
+      idle = 0;
       if (options.refine_boundary && static_cast<int>(tree.nodes.size()) < n) {
         // Bisection keeps `inside` hitting the obstacle and `outside` missing it.
         Eigen::VectorXd inside = tree.nodes[e], outside = q_new, mid(space.dim());
@@ -110,7 +113,9 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
   if (static_cast<int>(tree.nodes.size()) < n) {
     std::ostringstream w;
     w << "obstacle '" << obstacle.name << "': tree stopped at " << tree.nodes.size() << " of " << n
-      << " samples after " << max_iterations << " expansions";
+      << " samples after " << iteration << " expansions ("
+      << (iteration > max_iterations ? "the limit" : "the last " + std::to_string(idle - 1) + " added nothing")
+      << ")";
     tree.warning = w.str();
   }
   return tree;

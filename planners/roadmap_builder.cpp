@@ -10,13 +10,14 @@ void connect(Roadmap& roadmap, const PlanningContext& context, int a, int b) {
     roadmap.addEdge(a, b, context.space.distance(roadmap.node(a), roadmap.node(b)));
 }
 
-// Tries `node` against up to k of its `search` nearest indexed nodes that lie in other components.
+// Tries `node` against up to k of its `search` nearest indexed nodes that lie in other components
+// (or, with any_component, against its k nearest).
 void connectToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                      int node, int k, int search) {
+                      int node, int k, int search, bool any_component = false) {
   int tried = 0;
   for (int j : nn.nearest(roadmap.node(node), search)) {
     if (tried >= k) break;
-    if (j == node || roadmap.connected(node, j)) continue;
+    if (j == node || (!any_component && roadmap.connected(node, j))) continue;
     ++tried;
     connect(roadmap, context, node, j);
   }
@@ -40,11 +41,13 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   QueryOutcome out;
   out.start_node = roadmap.addNode(query.start);
   out.goal_node = roadmap.addNode(query.goal);
+  // Start and goal are not in the tree, so no slot of the search goes to the node itself. Each
+  // endpoint gets edges to its k nearest whatever their component: one edge into a component could be
+  // disproved by certification, and the endpoint would be left with none.
+  for (int endpoint : {out.start_node, out.goal_node})
+    connectToNearest(roadmap, nn, context, endpoint, k, std::min(nn.size(), k), true);
   if (context.validator.isValid(query.start, query.goal))
     roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
-  // Start and goal are not in the tree, so no slot of the search goes to the node itself.
-  for (int endpoint : {out.start_node, out.goal_node})
-    connectToNearest(roadmap, nn, context, endpoint, k, std::min(nn.size(), 3 * k));
   const Eigen::VectorXd goal = query.goal;
   const int shared = milestones ? milestones->numNodes() : 0;
   while (roadmap.connected(out.start_node, out.goal_node)) {

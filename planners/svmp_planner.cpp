@@ -40,9 +40,10 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
 }
 
 std::string SvmpOptions::validate() const {
-  if (!(sigma > 0) || !std::isfinite(sigma)) return "sigma must be positive, got " + std::to_string(sigma);
+  auto positiveOrDerived = [](double v) { return v == kDerived || (v > 0 && std::isfinite(v)); };
+  if (!positiveOrDerived(sigma)) return "sigma must be positive, got " + std::to_string(sigma);
   if (!(C > 0) || !std::isfinite(C)) return "C must be positive, got " + std::to_string(C);
-  if (!(step > 0) || !std::isfinite(step)) return "step must be positive, got " + std::to_string(step);
+  if (!positiveOrDerived(step)) return "step must be positive, got " + std::to_string(step);
   if (samples_per_tree < 1 || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0)
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2)";
   if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
@@ -53,6 +54,14 @@ std::string SvmpOptions::validate() const {
   if (!(interior_fraction >= 0 && interior_fraction <= 1))
     return "interior_fraction must be in [0, 1], got " + std::to_string(interior_fraction);
   return "";
+}
+
+SvmpOptions SvmpOptions::resolvedFor(const cspace::ConfigurationSpace& space) const {
+  SvmpOptions o = *this;
+  if (o.step == kDerived)
+    o.step = (space.upper() - space.lower()).cwiseProduct(space.metricScale()).mean() / 40;
+  if (o.sigma == kDerived) o.sigma = 2 * o.step;
+  return o;
 }
 
 DescentOptions SvmpOptions::descent() const {
@@ -76,8 +85,8 @@ SVMP_REGISTER_PLANNER("svmp", [](const PlanningContext& context, const cspace::P
 });
 
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
-    : Planner(context), options_(options) {
-  if (const std::string err = options_.validate(); !err.empty()) throw std::invalid_argument("svmp: " + err);
+    : Planner(context), options_(options.resolvedFor(context.space)) {
+  if (const std::string err = options.validate(); !err.empty()) throw std::invalid_argument("svmp: " + err);
   if (options_.duplicate_radius < 0) options_.duplicate_radius = 0.5 * options_.step;
 }
 

@@ -22,9 +22,14 @@
 namespace svmp::planners {
 
 struct SvmpOptions {
-  double sigma = 0.1;             // RBF width in the weighted metric, gamma = 1/(2 sigma^2)
+  // Unset (kDerived) sigma and step are derived from the space (resolvedFor): step 1/40 of the mean
+  // weighted joint range, sigma twice the step (neighbouring samples' kernels overlap, thesis
+  // ch. 4.1.1). Over the 33 files in bench/scenarios this matched the hand-picked values' success;
+  // passages much narrower than sigma are found by centring (centreAlongNormal) and repair's bridges.
+  static constexpr double kDerived = -1;
+  double sigma = kDerived;        // RBF width in the weighted metric, gamma = 1/(2 sigma^2)
   double C = 100;                 // penalty; obstacle weights scale it per class
-  double step = 0.05;             // obstacle sampling step
+  double step = kDerived;         // obstacle sampling step (weighted metric)
   int samples_per_tree = 200;
   int k = 10;                     // roadmap neighbours
   double eps = 1e-3;              // SMO stopping tolerance
@@ -60,6 +65,8 @@ struct SvmpOptions {
   static SvmpOptions fromParameters(const cspace::ParameterSet& params);
   // "" when usable, else what is wrong.
   std::string validate() const;
+  // These options with sigma and step derived where unset.
+  SvmpOptions resolvedFor(const cspace::ConfigurationSpace& space) const;
   // The milestone descent with descent_step resolved.
   DescentOptions descent() const;
   bool operator==(const SvmpOptions&) const = default;

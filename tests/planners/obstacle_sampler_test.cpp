@@ -57,6 +57,33 @@ TEST(ObstacleSampler, SamplesHitTheirObstacleAndTreesAreFull) {
   EXPECT_EQ(s.numBoundary(), boundary_per_label[1] + boundary_per_label[2] + boundary_per_label[3]);
 }
 
+// A box only a few steps wide holds fewer than N samples a step apart: its tree stops after 2 N
+// expansions in a row that add nothing, says so, and spends far fewer checks than the 50 N expansion
+// limit would.
+TEST(ObstacleSampler, AFullTreeStopsGrowing) {
+  auto w = makeWorld(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [10, 10]}}\n"
+      "obstacles:\n"
+      "  - {name: pebble, shape: box, size: [0.3, 0.3, 1.0], position: [5, 5, 0], sample: [5, 5]}\n"
+      "start: [1, 1]\n"
+      "goal: [9, 9]\n"
+      "resolution: 0.01\n");
+  planners::ObstacleSamplerOptions opt;
+  opt.step = 0.05;
+  opt.samples_per_tree = 200;
+  const std::uint64_t before = w->checker.collisionChecks();
+  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 3, 1);
+  const std::uint64_t checks = w->checker.collisionChecks() - before;
+  ASSERT_EQ(s.tree_sizes.size(), 1u);
+  EXPECT_LT(s.tree_sizes[0], opt.samples_per_tree);
+  EXPECT_GT(s.tree_sizes[0], 10) << s.warnings.front();
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("added nothing"), std::string::npos) << s.warnings[0];
+  // Each idle expansion is one check; the limit would be 50 x 200 of them.
+  EXPECT_LT(checks, 10u * static_cast<std::uint64_t>(opt.samples_per_tree) + 100u * s.tree_sizes[0]);
+  for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i]));
+}
+
 TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
   auto w = makeWorld(kThreeObstacles);
   const auto opt = samplerOptions();

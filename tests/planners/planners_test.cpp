@@ -282,6 +282,33 @@ TEST(NarrowPassage, SvmpRepairThreadsAMillimetreGap) {
   }
 }
 
+// Unset sigma and step follow the space's scale (1/40 of the mean range in the metric, sigma twice the
+// step); given values stay. The gap family's files give none and still thread a 1 mm gap.
+TEST(NarrowPassage, SvmpDerivesSigmaAndStepFromTheSpace) {
+  auto big = makeWorld(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [10, 20]}}\n"
+      "obstacles:\n"
+      "  - {name: a, shape: box, size: [1, 1, 1], position: [3, 3, 0]}\n"
+      "start: [1, 1]\n"
+      "goal: [9, 9]\n"
+      "resolution: 0.01\n"
+      "metric_weights: [1.0, 0.5]\n");
+  const SvmpOptions derived = SvmpOptions{}.resolvedFor(big->space);
+  EXPECT_DOUBLE_EQ(derived.step, (10 * 1.0 + 20 * std::sqrt(0.5)) / 2 / 40);  // metric: sqrt(w) q
+  EXPECT_DOUBLE_EQ(derived.sigma, 2 * derived.step);
+  SvmpOptions given;
+  given.sigma = 0.7;
+  EXPECT_DOUBLE_EQ(given.resolvedFor(big->space).sigma, 0.7);
+  EXPECT_DOUBLE_EQ(given.resolvedFor(big->space).step, derived.step);
+  auto gap = makeWorld(gapScenario(0.001, "  prm: {samples: 100}\n"));
+  gap->certify();
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const PlanResult r = gap->planner("svmp")->solve(gap->query(), seed);
+    ASSERT_TRUE(r.solved()) << "seed " << seed << ": " << r.message;
+    EXPECT_TRUE(pathIsValid(*gap, r.path)) << "seed " << seed;
+  }
+}
+
 // Repair keeps going while the start's or goal's component grows and says why it stopped: the
 // component sizes and one of: rounds without progress, the round limit, or the last round's guided
 // samples giving no free milestone (or no repair at all).
