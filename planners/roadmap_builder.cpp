@@ -5,21 +5,35 @@ namespace svmp::planners {
 namespace {
 
 // The straight-line local planner: one validated segment, one edge.
-void connect(Roadmap& roadmap, const PlanningContext& context, int a, int b) {
-  if (context.validator.isValid(roadmap.node(a), roadmap.node(b)))
-    roadmap.addEdge(a, b, context.space.distance(roadmap.node(a), roadmap.node(b)));
+bool connect(Roadmap& roadmap, const PlanningContext& context, int a, int b) {
+  if (!context.validator.isValid(roadmap.node(a), roadmap.node(b))) return false;
+  roadmap.addEdge(a, b, context.space.distance(roadmap.node(a), roadmap.node(b)));
+  return true;
 }
 
-// Tries `node` against up to k of its `search` nearest indexed nodes that lie in other components
-// (or, with any_component, against its k nearest).
+// Tries `node` against up to k of its `search` nearest indexed nodes that lie in other components.
 void connectToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                      int node, int k, int search, bool any_component = false) {
+                      int node, int k, int search) {
   int tried = 0;
   for (int j : nn.nearest(roadmap.node(node), search)) {
     if (tried >= k) break;
-    if (j == node || (!any_component && roadmap.connected(node, j))) continue;
+    if (j == node || roadmap.connected(node, j)) continue;
     ++tried;
     connect(roadmap, context, node, j);
+  }
+}
+
+// A query's endpoint (not in the index): edges to its k nearest whatever their component, since one
+// edge into a component could be disproved by certification and leave the endpoint with none; while
+// it has no edge, up to 2k more of its 3k nearest in other components.
+void connectEndpoint(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context, int node,
+                     int k) {
+  int tried = 0, edges = 0;
+  for (int j : nn.nearest(roadmap.node(node), std::min(nn.size(), 3 * k))) {
+    if (tried >= k && edges > 0) break;
+    if (tried >= k && roadmap.connected(node, j)) continue;
+    ++tried;
+    edges += connect(roadmap, context, node, j);
   }
 }
 
@@ -41,11 +55,7 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   QueryOutcome out;
   out.start_node = roadmap.addNode(query.start);
   out.goal_node = roadmap.addNode(query.goal);
-  // Start and goal are not in the tree, so no slot of the search goes to the node itself. Each
-  // endpoint gets edges to its k nearest whatever their component: one edge into a component could be
-  // disproved by certification, and the endpoint would be left with none.
-  for (int endpoint : {out.start_node, out.goal_node})
-    connectToNearest(roadmap, nn, context, endpoint, k, std::min(nn.size(), k), true);
+  for (int endpoint : {out.start_node, out.goal_node}) connectEndpoint(roadmap, nn, context, endpoint, k);
   if (context.validator.isValid(query.start, query.goal))
     roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
   const Eigen::VectorXd goal = query.goal;

@@ -411,28 +411,46 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const int search = std::min(nn_->size(), 4 * options_.k + 1);
-  std::vector<std::pair<int, int>> frontiers;  // (node of with_query, node of roadmap_)
-  double narrowest = std::numeric_limits<double>::infinity();
+  struct Frontier {
+    int a, b;        // a node of with_query in the component, b a node of roadmap_ outside it
+    double gap;      // their distance
+    bool alone;      // a is an endpoint without edges
+  };
+  std::vector<Frontier> frontiers;
   for (int endpoint : {start_node, goal_node}) {
-    double best = std::numeric_limits<double>::infinity();
-    Eigen::VectorXd a, b;
-    int ia = -1, ib = -1;
+    Frontier f{-1, -1, std::numeric_limits<double>::infinity(), false};
     for (int i = 0; i < with_query.numNodes(); ++i) {
       if (!with_query.connected(endpoint, i)) continue;
       for (int j : nn_->nearest(with_query.node(i), search)) {
         if (with_query.connected(endpoint, j)) continue;
         const double d = context_.space.distance(with_query.node(i), roadmap_.node(j));
-        if (d < best) best = d, a = with_query.node(i), b = roadmap_.node(j), ia = i, ib = j;
+        if (d < f.gap) f = {i, j, d, i == endpoint};
         break;
       }
     }
-    if (a.size() == 0) continue;
-    frontiers.emplace_back(ia, ib);
-    narrowest = std::min(narrowest, best);
-    // Local to the disconnection (the pair is its narrowest point), wider after rounds without progress.
-    const double spread = 0.5 * best * widen;
+    if (f.a >= 0) frontiers.push_back(f);
+  }
+  // The closest pair between the start's and the goal's components: the nearest outside nodes may
+  // lead into dead ends while the two grow along one passage towards each other.
+  Frontier between{-1, -1, std::numeric_limits<double>::infinity(), false};
+  for (int i = 0; i < with_query.numNodes(); ++i) {
+    if (!with_query.connected(start_node, i)) continue;
+    for (int j = 0; j < roadmap_.numNodes(); ++j)
+      if (with_query.connected(goal_node, j))
+        if (const double d = context_.space.distance(with_query.node(i), roadmap_.node(j)); d < between.gap)
+          between = {i, j, d, false};
+  }
+  if (between.a >= 0) frontiers.push_back(between);
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const Frontier& f : frontiers) {
+    narrowest = std::min(narrowest, f.gap);
+    const Eigen::VectorXd a = with_query.node(f.a), b = roadmap_.node(f.b);
+    // Local to the disconnection (the pair is its narrowest point), wider after rounds without
+    // progress. An endpoint with no edge sits in a passage too thin for the roadmap's nodes to see:
+    // its samples are drawn around it instead, narrower after each round without progress.
+    const double spread = f.alone ? 0.5 * f.gap / widen : 0.5 * f.gap * widen;
     for (int s = 0; s < options_.repair_samples / 2; ++s) {
-      Eigen::VectorXd q = a + unit(rng) * (b - a);
+      Eigen::VectorXd q = f.alone ? a : Eigen::VectorXd(a + unit(rng) * (b - a));
       for (int d = 0; d < q.size(); ++d) q[d] += spread * normal(rng) / scale[d];
       context_.space.clamp(q);
       starts.push_back(q);
@@ -444,8 +462,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   }
   const int old_n = roadmap_.numNodes();
   int added = 0;
-  for (const auto& [ia, ib] : frontiers)
-    added += bridge(with_query.node(ia), ia < old_n ? ia : -1, ib);
+  for (const Frontier& f : frontiers) added += bridge(with_query.node(f.a), f.a < old_n ? f.a : -1, f.b);
   // Milestones as close as a quarter of the disconnection: a passage narrower than the usual
   // duplicate radius needs them.
   added += addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true,
