@@ -23,15 +23,14 @@ void connectToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const Planni
   }
 }
 
-// A query's endpoint (not in the index): edges to its k nearest whatever their component, since one
-// edge into a component could be disproved by certification and leave the endpoint with none; while
-// it has no edge, up to 2k more of its 3k nearest in other components.
+// A query's endpoint (not in the index): as connectToNearest over its 3k nearest, but while it has no
+// edge it keeps trying past k.
 void connectEndpoint(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context, int node,
                      int k) {
   int tried = 0, edges = 0;
   for (int j : nn.nearest(roadmap.node(node), std::min(nn.size(), 3 * k))) {
     if (tried >= k && edges > 0) break;
-    if (tried >= k && roadmap.connected(node, j)) continue;
+    if (roadmap.connected(node, j)) continue;
     ++tried;
     edges += connect(roadmap, context, node, j);
   }
@@ -56,6 +55,8 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   out.start_node = roadmap.addNode(query.start);
   out.goal_node = roadmap.addNode(query.goal);
   for (int endpoint : {out.start_node, out.goal_node}) connectEndpoint(roadmap, nn, context, endpoint, k);
+  // The straight motion last: added first, it would join the goal to the start's component, the goal
+  // would skip every neighbour there, and certification disproving it would leave the goal alone.
   if (context.validator.isValid(query.start, query.goal))
     roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
   const Eigen::VectorXd goal = query.goal;

@@ -340,8 +340,6 @@ int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
   int splits = 0, added = 0;
   const DescentOptions descent = options_.descent();
   const Eigen::VectorXd& scale = context_.space.metricScale();
-  // Proved where the query will prove it: at a passage's mouth the sampled check may cut a corner.
-  const cspace::MotionValidator& segment = context_.certifier ? *context_.certifier : context_.validator;
   // From `from` towards `to` within the boundary's tangent plane at `from`: inside a passage the
   // boundary runs along it, so this follows the passage out of its mouth.
   auto tangentStep = [&](const Eigen::VectorXd& from, const Eigen::VectorXd& to) -> std::optional<Eigen::VectorXd> {
@@ -363,12 +361,14 @@ int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
     const int k = nearestBoundary(middle);
     return centreAlongNormal(k, risk_->descend(k, middle, context_.space, descent).q);
   };
+  // A segment is checked, then proved where the query will prove it (at a passage's mouth the sampled
+  // check may cut a corner; proving a blocked segment first would cost far more).
   // A blocked a-b is split at a point nearer to both ends, and each half linked the same way. The
   // split point is tried as a tangent step from either end, then as the boundary middle.
   std::function<bool(const Eigen::VectorXd&, int, const Eigen::VectorXd&, int, int)> link =
       [&](const Eigen::VectorXd& pa, int ia, const Eigen::VectorXd& pb, int ib, int depth) {
         const double length = context_.space.distance(pa, pb);
-        if (segment.isValid(pa, pb)) {
+        if (context_.validator.isValid(pa, pb) && (!context_.certifier || context_.certifier->isValid(pa, pb))) {
           if (ia >= 0 && ib >= 0) {
             roadmap_.addEdge(ia, ib, length);
             if (context_.certifier) roadmap_.markCertified(ia, ib);
