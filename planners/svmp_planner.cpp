@@ -389,7 +389,8 @@ int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
         ++added;
         return link(pa, ia, *m, im, depth - 1) && link(*m, im, pb, ib, depth - 1);
       };
-  link(a, a_node, roadmap_.node(b_node), b_node, kMaxDepth);
+  const Eigen::VectorXd b = roadmap_.node(b_node);  // a copy: link adds nodes, the roadmap reallocates
+  link(a, a_node, b, b_node, kMaxDepth);
   return added;
 }
 
