@@ -1,8 +1,8 @@
 #include "planners/svmp_planner.hpp"
 
 #include <atomic>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -214,7 +214,8 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
   std::vector<char> raw(n, 0);
   if (keep_free_starts) {
     ends.insert(ends.end(), starts.begin(), starts.end());
-    end_class.insert(end_class.end(), end_class.begin(), end_class.end());
+    const std::vector<int> descended_class = end_class;  // insert must not read its own vector
+    end_class.insert(end_class.end(), descended_class.begin(), descended_class.end());
     raw.resize(2 * n, 1);
     n *= 2;
   }
@@ -335,6 +336,12 @@ int SvmpPlanner::nearestBoundary(const Eigen::VectorXd& q) const {
   return k;
 }
 
+std::optional<Eigen::VectorXd> SvmpPlanner::inPassage(int k, const Eigen::VectorXd& q) const {
+  if (options_.centre_in_passage) return centreAlongNormal(k, q);
+  if (context_.checker.isValid(q)) return q;
+  return std::nullopt;
+}
+
 int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
   constexpr int kMaxDepth = 8, kMaxSplits = 32;
   int splits = 0, added = 0;
@@ -353,13 +360,13 @@ int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
     x -= x.dot(normal) * normal;
     Eigen::VectorXd m = from + x.cwiseQuotient(scale);
     context_.space.clamp(m);
-    return centreAlongNormal(k, m);
+    return inPassage(k, m);
   };
   // The middle pulled onto the nearest boundary (centred in the passage when it collides there).
   auto boundaryMiddle = [&](const Eigen::VectorXd& pa, const Eigen::VectorXd& pb) {
     const Eigen::VectorXd middle = 0.5 * (pa + pb);
     const int k = nearestBoundary(middle);
-    return centreAlongNormal(k, risk_->descend(k, middle, context_.space, descent).q);
+    return inPassage(k, risk_->descend(k, middle, context_.space, descent).q);
   };
   // A segment is checked, then proved where the query will prove it (at a passage's mouth the sampled
   // check may cut a corner; proving a blocked segment first would cost far more).

@@ -5,7 +5,8 @@
 // sample descends its class's risk function R_k = |F_k| to the decision boundary; kept when
 // collision-free and not a near-duplicate), MakeRoadmap (k nearest in other components, union-find) and
 // Query (A*). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
-// disconnection are guided down to the decision boundaries and the roadmap is reconnected.
+// disconnection are guided down to the decision boundaries, the narrowest pairs are bridged along the
+// boundary, and the roadmap is reconnected (answer, repair, bridge).
 // The roadmap answers many queries: build() once, query() many times; clear() forgets it.
 // Parameters (scenario `planners.svmp`, `--set svmp.KEY=VALUE`): the fields of SvmpOptions, same names.
 // Thread safety: as every Planner (planners/planner.hpp); OpenMP inside over trees, descents, checks.
@@ -102,11 +103,10 @@ class SvmpPlanner final : public Planner {
  private:
   void fillCounters(PlanResult& result) const;
   // Descends each start point on the risk of its class (or, with class -1, of the nearest boundary)
-  // and adds the collision-free, non-duplicate results as milestones. With keep_free_starts, a start
-  // whose descent ends in collision is kept itself when it is free (the repair's hybrid with uniform
-  // PRM sampling that thesis ch. 3.5 suggests where obstacle regions dominate). Returns how many were
-  // added.
-  // Stops early (returning what it added) when `stop` fires.
+  // and adds the collision-free, non-duplicate results as milestones. With keep_free_starts, each free
+  // start is a milestone too (the repair's hybrid with uniform PRM sampling that thesis ch. 3.5
+  // suggests where obstacle regions dominate). duplicate_radius < 0: the option's. Returns how many
+  // were added; stops early (returning what it added) when `stop` fires.
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
                     const Termination& stop, bool keep_free_starts = false, double duplicate_radius = -1);
   // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
@@ -114,16 +114,20 @@ class SvmpPlanner final : public Planner {
   bool repair(Roadmap& with_query, int start_node, int goal_node, double widen, cspace::Rng& rng,
               const Termination& stop, std::string& why);
   // Links `a` (roadmap node a_node, or -1 for a query's endpoint) to node b_node along the decision
-  // boundary: a blocked segment is split at its middle pulled onto the boundary (and centred in the
-  // passage), recursively. Straight segments between milestones rarely thread a passage much
-  // narrower than sigma at its mouths, where the smooth boundary strays from the passage's centre.
-  // Returns how many milestones it added.
+  // boundary: a blocked segment is split at a tangent step from either end or at its middle pulled
+  // onto the boundary, each placed in the passage (inPassage), recursively. Straight segments between
+  // milestones rarely thread a passage much narrower than sigma at its mouths, where the smooth
+  // boundary strays from the passage's centre. Returns how many milestones it added.
   int bridge(const Eigen::VectorXd& a, int a_node, int b_node);
   int nearestBoundary(const Eigen::VectorXd& q) const;  // the class k whose |F_k(q)| is smallest
+  // q centred along grad F_k (centreAlongNormal) unless centre_in_passage is off; then q when free.
+  std::optional<Eigen::VectorXd> inPassage(int k, const Eigen::VectorXd& q) const;
   // A descended milestone that collides lies where the SVM boundary, smooth at the scale sigma, misses
   // a passage narrower than sigma. Along the boundary's normal (grad F_k) within sigma, find the free
   // interval nearest to it (doubling steps from resolution/4, then bisection of both edges) and return
-  // its middle: the centre of the passage on that line. Empty when no free interval is found.
+  // its middle: the centre of the passage on that line. Empty when no free interval is found. A free
+  // q is centred in its own interval when that is bounded within sigma on both sides (a passage
+  // narrower than 2 sigma), else returned as it is.
   std::optional<Eigen::VectorXd> centreAlongNormal(int k, const Eigen::VectorXd& q) const;
 
   SvmpOptions options_;
