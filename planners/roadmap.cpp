@@ -38,9 +38,9 @@ int Roadmap::addNode(const Eigen::VectorXd& q) {
   return numNodes() - 1;
 }
 
-void Roadmap::addEdge(int a, int b, double cost) {
-  adjacency_[a].push_back({b, cost});
-  adjacency_[b].push_back({a, cost});
+void Roadmap::addEdge(int a, int b, double cost, bool checked) {
+  adjacency_[a].push_back({b, cost, false, checked});
+  adjacency_[b].push_back({a, cost, false, checked});
   components_.unite(a, b);
   ++num_edges_;
 }
@@ -56,22 +56,53 @@ void Roadmap::removeEdge(int a, int b) {
   if (!drop(a, b)) return;
   drop(b, a);
   --num_edges_;
+  recomputeComponents();
+}
+
+int Roadmap::dropUnchecked() {
+  int dropped = 0;
+  for (auto& list : adjacency_)
+    dropped += static_cast<int>(std::erase_if(list, [](const Edge& e) { return !e.checked; }));
+  num_edges_ -= dropped / 2;
+  recomputeComponents();
+  return dropped / 2;
+}
+
+void Roadmap::recomputeComponents() {
   components_ = UnionFind(numNodes());
   for (int u = 0; u < numNodes(); ++u)
     for (const Edge& e : adjacency_[u])
       if (u < e.to) components_.unite(u, e.to);
 }
 
+void Roadmap::markChecked(int a, int b) {
+  for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
+    for (Edge& e : adjacency_[from])
+      if (e.to == to) e.checked = true;
+}
+
 void Roadmap::markCertified(int a, int b) {
   for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
     for (Edge& e : adjacency_[from])
-      if (e.to == to) e.certified = true;
+      if (e.to == to) e.certified = e.checked = true;
+}
+
+const Edge* Roadmap::find(int a, int b) const {
+  for (const Edge& e : adjacency_[a])
+    if (e.to == b) return &e;
+  return nullptr;
+}
+
+bool Roadmap::hasEdge(int a, int b) const { return find(a, b) != nullptr; }
+
+bool Roadmap::isChecked(int a, int b) const {
+  const Edge* e = find(a, b);
+  return e && e->checked;
 }
 
 bool Roadmap::isCertified(int a, int b) const {
-  for (const Edge& e : adjacency_[a])
-    if (e.to == b) return e.certified;
-  return false;
+  const Edge* e = find(a, b);
+  return e && e->certified;
 }
 
 void Roadmap::clear() {

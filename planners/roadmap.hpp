@@ -1,8 +1,9 @@
 #pragma once
 // The roadmap shared by SVMP and the classical PRM: milestones, weighted undirected edges, union-find
 // over connected components, and A* search (Hart, Nilsson, Raphael 1968) with the metric as heuristic.
-// Edges found in collision by certification are removed (lazy repair, as LazyPRM: Bohlin and Kavraki
-// 2000), and the edges proven free are marked so that later queries do not prove them again.
+// Edges may be added unchecked (lazy, as LazyPRM: Bohlin and Kavraki 2000); edges a query finds in
+// collision are removed, and those checked or proven free are marked so later queries reuse the work.
+// Components count unchecked edges: they are what the roadmap may connect, not what it has proven.
 // Thread safety: none; one planner owns it.
 #include <Eigen/Core>
 #include <functional>
@@ -28,16 +29,23 @@ struct Edge {
   int to;
   double cost;
   bool certified = false;  // proven collision-free by the certified validator (lazy, on first use)
+  bool checked = true;     // passed the sampled motion validator; false: a lazy edge, unchecked yet
 };
 
 class Roadmap {
  public:
   // Adds a milestone; returns its index.
   int addNode(const Eigen::VectorXd& q);
-  void addEdge(int a, int b, double cost);
+  // checked = false adds a lazy edge (LazyPRM): assumed free until a query checks it.
+  void addEdge(int a, int b, double cost, bool checked = true);
+  bool hasEdge(int a, int b) const;
   // Removes the edge a-b (both directions) and recomputes the components; no-op when absent.
   void removeEdge(int a, int b);
-  void markCertified(int a, int b);
+  // Removes every unchecked edge; returns how many.
+  int dropUnchecked();
+  void markChecked(int a, int b);
+  void markCertified(int a, int b);  // certified implies checked
+  bool isChecked(int a, int b) const;
   bool isCertified(int a, int b) const;
   void clear();
 
@@ -54,6 +62,9 @@ class Roadmap {
   std::vector<int> shortestPath(int from, int to, const std::function<double(int)>& heuristic) const;
 
  private:
+  const Edge* find(int a, int b) const;  // the edge a-b in a's list, or nullptr
+  void recomputeComponents();
+
   std::vector<Eigen::VectorXd> nodes_;
   std::vector<std::vector<Edge>> adjacency_;
   UnionFind components_;

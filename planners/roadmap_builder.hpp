@@ -10,22 +10,27 @@
 namespace svmp::planners {
 
 // Connects nodes [first, numNodes) of the roadmap; `nn` indexes the roadmap's nodes [0, nn.size()).
-// Returns false when `stop` ended it early.
+// Returns false when `stop` ended it early. Lazy (LazyPRM, Bohlin and Kavraki 2000): no motion is
+// checked here; each node gets unchecked edges to its k nearest nodes and to nodes of other
+// components among its 3k + 1 nearest (up to 2k edges), and queries check only the edges their
+// paths use. A single query then checks a few dozen motions instead of thousands.
 bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first = 0, const Termination& stop = {});
+                       int k, int first = 0, const Termination& stop = {}, bool lazy = false);
 
 struct QueryOutcome {
   std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected
   int start_node = -1, goal_node = -1;  // their indices in the query roadmap
   bool certified = false;             // every edge of the path proven free by context.certifier
   double certify_ms = 0;              // time spent proving edges
+  int lazy_checks = 0;                // unchecked edges the search made it check
 };
 
 // Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean),
-// connects each to its k nearest milestones and searches the path. With context.certifier, each edge
-// of the path found is proven free (once: proven edges are marked); an edge that is not is removed and
-// the search runs again, until a path is proven or start and goal are disconnected. `milestones`, the
-// roadmap `roadmap` was copied from, gets the same marks and removals for edges between its nodes.
+// connects each to its k nearest milestones (checked edges) and searches the path. Each unchecked edge
+// of the path found is checked, and with context.certifier each edge is proven free (once: checked
+// and proven edges are marked); an edge that fails is removed and the search runs again, until a path
+// holds or start and goal are disconnected. `milestones`, the roadmap `roadmap` was copied from, gets
+// the same marks and removals for edges between its nodes. `lazy_checks` counts the motions checked.
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
                           const cspace::Query& query, int k, Roadmap* milestones = nullptr);
 

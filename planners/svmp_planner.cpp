@@ -21,6 +21,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.step = params.getDouble("step", o.step, 1e-9, 1e6);
   o.samples_per_tree = static_cast<int>(params.getInt("samples_per_tree", o.samples_per_tree, 1, 100000));
   o.k = static_cast<int>(params.getInt("k", o.k, 1, 10000));
+  o.lazy = params.getBool("lazy", o.lazy);
   o.eps = params.getDouble("eps", o.eps, 1e-15, 1);
   o.cache_mb = params.getDouble("cache_mb", o.cache_mb, 1, 1e6);
   o.truncated = params.getBool("truncated", o.truncated);
@@ -405,7 +406,7 @@ bool SvmpPlanner::makeRoadmap(PhaseTimes& times, const Termination& stop) {
   if (!risk_) throw std::logic_error("svmp: makeRoadmap before trainMultiSvm");
   const auto t0 = Clock::now();
   nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
-  const bool done = connectMilestones(roadmap_, *nn_, context_, options_.k, 0, stop);
+  const bool done = connectMilestones(roadmap_, *nn_, context_, options_.k, 0, stop, options_.lazy);
   times.roadmap_ms += msSince(t0);
   return done;
 }
@@ -551,6 +552,15 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       }
     }
     last_size = start_size + goal_size;
+    // A lazy roadmap that fails gives way to the thesis' eager MakeRoadmap (checked edges are kept),
+    // once per build, and the query runs again as round 0: eager connection reaches other components
+    // beyond the k nearest, and repair's frontiers need the components the roadmap has proven.
+    if (round == 0 && roadmap_.dropUnchecked() > 0) {
+      connectMilestones(roadmap_, *nn_, context_, options_.k, 0, stop);
+      last_size = -1;
+      --round;
+      continue;
+    }
     const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
     const bool repaired =
         budget && !stop() &&

@@ -3,8 +3,8 @@
 // (ch. 4.3.2): SampleObstacle (RRT-like trees inside each C-obstacle, Algorithm 1), TrainMultiSVM
 // (one-versus-rest RBF SVMs, per-class C, ch. 3.2 and 4.1.2), FindBoundaryMilestones (each boundary
 // sample descends its class's risk function R_k = |F_k| to the decision boundary; kept when
-// collision-free and not a near-duplicate), MakeRoadmap (k nearest in other components, union-find) and
-// Query (A*). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
+// collision-free and not a near-duplicate), MakeRoadmap (k nearest in other components, union-find;
+// by default with lazy edges, checked when a query's path uses them) and Query (A*). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
 // disconnection are guided down to the decision boundaries, the narrowest pairs are bridged along the
 // boundary, and the roadmap is reconnected (answer, repair, bridge).
 // The roadmap answers many queries: build() once, query() many times; clear() forgets it.
@@ -33,6 +33,10 @@ struct SvmpOptions {
   double step = kDerived;         // obstacle sampling step (weighted metric)
   int samples_per_tree = 200;
   int k = 10;                     // roadmap neighbours
+  // Lazy roadmap edges (LazyPRM, Bohlin and Kavraki 2000; roadmap_builder.hpp): the thesis checks
+  // every edge while connecting, which was 40-50% of a single query's time on Figs 4.4-4.10; lazily,
+  // a query checks only the edges on its candidate paths. false: the thesis' eager MakeRoadmap.
+  bool lazy = true;
   double eps = 1e-3;              // SMO stopping tolerance
   double cache_mb = 100;
   bool truncated = true;          // exp(-5)-truncated evaluation of F

@@ -225,13 +225,17 @@ bool writeConfigurationSpaceSvg(const std::string& file, const SvgContent& conte
   std::ostringstream subtitle;
   subtitle << "C-space of " << scenario.name;
   if (content.roadmap) {
-    canvas.out() << "<path fill=\"none\" stroke=\"#aaaaaa\" stroke-width=\"0.6\" d=\"";
-    for (int i = 0; i < content.roadmap->numNodes(); ++i)
-      for (const planners::Edge& edge : content.roadmap->neighbours(i))
-        if (edge.to > i)
-          canvas.out() << 'M' << canvas.xy(content.roadmap->node(i)) << 'L'
-                       << canvas.xy(content.roadmap->node(edge.to));
-    canvas.out() << "\"/>\n";
+    // Checked edges solid; lazy edges no query has checked (svmp.lazy) dashed.
+    for (const bool checked : {true, false}) {
+      canvas.out() << "<path fill=\"none\" stroke=\"#aaaaaa\" stroke-width=\"0.6\""
+                   << (checked ? "" : " stroke-dasharray=\"2,2\"") << " d=\"";
+      for (int i = 0; i < content.roadmap->numNodes(); ++i)
+        for (const planners::Edge& edge : content.roadmap->neighbours(i))
+          if (edge.to > i && edge.checked == checked)
+            canvas.out() << 'M' << canvas.xy(content.roadmap->node(i)) << 'L'
+                         << canvas.xy(content.roadmap->node(edge.to));
+      canvas.out() << "\"/>\n";
+    }
     subtitle << "; " << content.roadmap->numNodes() << " milestones, "
              << content.roadmap->numEdges() << " edges";
   }

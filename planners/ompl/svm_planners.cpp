@@ -209,9 +209,10 @@ void SvmOmplPlannerBase::getPlannerData(ob::PlannerData& data) const {
   if (roadmap) {
     std::vector<unsigned int> index(roadmap->numNodes());
     for (int i = 0; i < roadmap->numNodes(); ++i) index[i] = data.addVertex(vertex(roadmap->node(i)));
+    // Lazy edges no query has checked yet are candidates, not roadmap edges.
     for (int i = 0; i < roadmap->numNodes(); ++i)
       for (const planners::Edge& e : roadmap->neighbours(i))
-        if (i < e.to) data.addEdge(index[i], index[e.to], ob::PlannerDataEdge(), ob::Cost(e.cost));
+        if (i < e.to && e.checked) data.addEdge(index[i], index[e.to], ob::PlannerDataEdge(), ob::Cost(e.cost));
   } else if (last_.path.size() >= 2) {
     unsigned int previous = data.addStartVertex(vertex(last_.path.front()));
     for (size_t i = 1; i < last_.path.size(); ++i) {

@@ -68,18 +68,23 @@ TEST(Planners, SvmpCountersDescribeTheRoadmap) {
   for (const auto& q : svmp.roadmap().nodes()) {
     EXPECT_TRUE(w->checker.isValid(q)) << q.transpose();
   }
-  // Every roadmap edge is a valid straight line (re-checked by an independent checker, finer).
+  // Every checked roadmap edge is a valid straight line (re-checked by an independent checker,
+  // finer); lazy edges the query did not use may be unchecked.
   const cspace::CollisionChecker independent(w->scenario.robot, w->scenario.environment);
+  int checked = 0;
   for (int i = 0; i < svmp.roadmap().numNodes(); ++i)
     for (const Edge& e : svmp.roadmap().neighbours(i)) {
       const Eigen::VectorXd& a = svmp.roadmap().node(i);
       const Eigen::VectorXd& b = svmp.roadmap().node(e.to);
       EXPECT_NEAR(e.cost, w->space.distance(a, b), 1e-12);
+      if (!e.checked) continue;
+      ++checked;
       const int n = static_cast<int>(std::ceil(w->space.distance(a, b) / 0.0005)) + 1;
       for (int s = 0; s <= n; ++s)
         ASSERT_TRUE(independent.isValid(a + (static_cast<double>(s) / n) * (b - a)))
             << "edge " << i << "-" << e.to << " collides";
     }
+  EXPECT_GT(checked, 0);
   EXPECT_GE(pathLength(r.path, w->space), w->space.distance(w->query().start, w->query().goal) - 1e-12);
 }
 
@@ -218,6 +223,50 @@ TEST(MakePlanner, KnowsEveryListedName) {
     auto p = makePlanner(name, w->context, cspace::ParameterSet("test.yaml", "planners." + name + ".", {}));
     ASSERT_NE(p, nullptr) << name;
     EXPECT_EQ(p->name(), name);
+  }
+}
+
+// A lazy edge straight through the wall is checked when A* first uses it, removed from the query's
+// roadmap and from the milestones', and the path goes round through the gap on edges now checked.
+TEST(LazyRoadmap, QueryChecksOnlyItsPathAndRemovesBlockedEdges) {
+  auto w = makeWorld(gapScenario(0.03, kPlanners));
+  w->certify();
+  Roadmap milestones;
+  for (auto [x, y] : {std::pair{0.3, 0.1}, {0.7, 0.1}, {0.3, 0.5}, {0.7, 0.5}, {0.05, 0.95}})
+    milestones.addNode(Eigen::Vector2d(x, y));
+  for (auto [a, b] : {std::pair{0, 1}, {0, 2}, {2, 3}, {3, 1}, {2, 4}})
+    milestones.addEdge(a, b, w->space.distance(milestones.node(a), milestones.node(b)), false);
+  const NearestNeighbors nn(milestones.nodes(), w->space.metricScale());
+  cspace::Query query;
+  query.start = Eigen::Vector2d(0.2, 0.1);
+  query.goal = Eigen::Vector2d(0.8, 0.1);
+  Roadmap with_query = milestones;
+  const QueryOutcome out = queryRoadmap(with_query, nn, w->context, query, 1, &milestones);
+  ASSERT_EQ(out.path.size(), 6u);
+  EXPECT_TRUE(out.certified);
+  EXPECT_EQ(out.lazy_checks, 4) << "the wall edge, then the three of the detour; never 2-4";
+  for (size_t i = 0; i + 1 < out.path.size(); ++i)
+    EXPECT_TRUE(w->certifier.isValid(out.path[i], out.path[i + 1])) << "segment " << i;
+  EXPECT_TRUE((out.path[2] - milestones.node(2)).norm() < 1e-12 && (out.path[3] - milestones.node(3)).norm() < 1e-12);
+  EXPECT_FALSE(milestones.hasEdge(0, 1)) << "the blocked edge stays in the milestones' roadmap";
+  EXPECT_TRUE(milestones.isCertified(0, 2) && milestones.isCertified(2, 3) && milestones.isCertified(3, 1));
+  EXPECT_FALSE(milestones.isChecked(2, 4)) << "an edge off the path is left unchecked";
+}
+
+// SVMP's lazy roadmap answers with fewer motion checks than the thesis' eager one, certified.
+TEST(LazyRoadmap, SvmpChecksFewerMotionsThanEager) {
+  const std::string params = "  svmp: {sigma: 0.06, C: 100, step: 0.05, samples_per_tree: 200, k: 10, lazy: ";
+  auto lazy = makeWorld(gapScenario(0.03, params + "true}\n"));
+  auto eager = makeWorld(gapScenario(0.03, params + "false}\n"));
+  lazy->certify();
+  eager->certify();
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const PlanResult a = lazy->planner("svmp")->solve(lazy->query(), seed);
+    const PlanResult b = eager->planner("svmp")->solve(eager->query(), seed);
+    ASSERT_TRUE(a.solved() && b.solved()) << a.message << " / " << b.message;
+    EXPECT_TRUE(a.certified);
+    EXPECT_TRUE(pathIsValid(*lazy, a.path, lazy->scenario.resolution)) << "seed " << seed;
+    EXPECT_LT(a.local_planner_calls, b.local_planner_calls) << "seed " << seed;
   }
 }
 

@@ -112,6 +112,28 @@ TEST(Roadmap, CountsEdgesAndClears) {
   EXPECT_FALSE(r.connected(0, 1)) << "components survived clear()";
 }
 
+// Lazy edges: unchecked until marked; dropping them keeps checked and certified edges and the
+// components they make.
+TEST(Roadmap, DropsOnlyUncheckedEdges) {
+  Roadmap r;
+  for (int i = 0; i < 4; ++i) r.addNode(Eigen::Vector2d(i, 0));
+  r.addEdge(0, 1, 1.0);
+  r.addEdge(1, 2, 1.0, false);
+  r.addEdge(2, 3, 1.0, false);
+  r.markCertified(2, 3);
+  EXPECT_TRUE(r.isChecked(0, 1));
+  EXPECT_FALSE(r.isChecked(1, 2));
+  EXPECT_TRUE(r.isChecked(3, 2)) << "certified implies checked, both directions";
+  EXPECT_TRUE(r.connected(0, 3)) << "components count unchecked edges";
+  EXPECT_EQ(r.dropUnchecked(), 1);
+  EXPECT_EQ(r.numEdges(), 2);
+  EXPECT_FALSE(r.hasEdge(2, 1));
+  EXPECT_TRUE(r.connected(0, 1));
+  EXPECT_TRUE(r.connected(2, 3));
+  EXPECT_FALSE(r.connected(1, 2));
+  EXPECT_EQ(r.dropUnchecked(), 0);
+}
+
 std::vector<int> bfsComponents(int n, const std::vector<std::pair<int, int>>& edges) {
   std::vector<std::vector<int>> adj(n);
   for (auto [a, b] : edges) adj[a].push_back(b), adj[b].push_back(a);
