@@ -199,14 +199,7 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
 #pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
   for (int i = 0; i < n; ++i) {
     if (stopped.load(std::memory_order_relaxed) || (stop() && (stopped = true))) continue;
-    int k = classes[i];
-    if (k < 0) {  // the nearest decision boundary: the class whose |F_k| is smallest here
-      double best = std::numeric_limits<double>::infinity();
-      for (int c = 0; c < risk_->numClasses(); ++c) {
-        const double r = risk_->risk(c, starts[i]);
-        if (r < best) best = r, k = c;
-      }
-    }
+    const int k = classes[i] >= 0 ? classes[i] : nearestBoundary(starts[i]);
     ends[i] = risk_->descend(k, starts[i], context_.space, descent).q;
     end_class[i] = k;
   }
@@ -442,12 +435,18 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   // The closest pair between the start's and the goal's components: the nearest outside nodes may
   // lead into dead ends while the two grow along one passage towards each other.
   Frontier between{-1, -1, std::numeric_limits<double>::infinity(), false};
-  for (int i = 0; i < with_query.numNodes(); ++i) {
-    if (!with_query.connected(start_node, i)) continue;
-    for (int j = 0; j < roadmap_.numNodes(); ++j)
-      if (with_query.connected(goal_node, j))
-        if (const double d = context_.space.distance(with_query.node(i), roadmap_.node(j)); d < between.gap)
-          between = {i, j, d, false};
+  std::vector<int> goal_side;
+  std::vector<Eigen::VectorXd> goal_points;
+  for (int j = 0; j < roadmap_.numNodes(); ++j)
+    if (with_query.connected(goal_node, j)) goal_side.push_back(j), goal_points.push_back(roadmap_.node(j));
+  if (!goal_side.empty()) {
+    const NearestNeighbors goal_nn(goal_points, scale);
+    for (int i = 0; i < with_query.numNodes(); ++i) {
+      if (!with_query.connected(start_node, i)) continue;
+      const int j = goal_side[goal_nn.nearest(with_query.node(i), 1).front()];
+      if (const double d = context_.space.distance(with_query.node(i), roadmap_.node(j)); d < between.gap)
+        between = {i, j, d, false};
+    }
   }
   if (between.a >= 0) frontiers.push_back(between);
   double narrowest = std::numeric_limits<double>::infinity();
