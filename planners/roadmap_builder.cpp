@@ -78,14 +78,15 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
     const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {
       return context.space.distance(roadmap.node(v), goal);
     });
-    // Unchecked edges first, all of them (cheap, and most failures are there), then the proofs.
+    // Unchecked edges first, up to the first that fails (cheap, and most failures are there), then
+    // the proofs.
     auto shared_too = [&](int u, int v, auto mark) {
       mark(roadmap, u, v);
       if (u < shared && v < shared) mark(*milestones, u, v);
     };
     const auto remove = [](Roadmap& r, int u, int v) { r.removeEdge(u, v); };
     bool disproved = false;
-    for (size_t i = 0; i + 1 < nodes.size(); ++i) {
+    for (size_t i = 0; i + 1 < nodes.size() && !disproved; ++i) {
       const int u = nodes[i], v = nodes[i + 1];
       if (roadmap.isChecked(u, v)) continue;
       ++out.lazy_checks;
