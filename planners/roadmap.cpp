@@ -75,17 +75,14 @@ void Roadmap::recomputeComponents() {
       if (u < e.to) components_.unite(u, e.to);
 }
 
-void Roadmap::markChecked(int a, int b) {
+void Roadmap::mark(int a, int b, bool certified) {
   for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
     for (Edge& e : adjacency_[from])
-      if (e.to == to) e.checked = true;
+      if (e.to == to) e.checked = true, e.certified = e.certified || certified;
 }
 
-void Roadmap::markCertified(int a, int b) {
-  for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}})
-    for (Edge& e : adjacency_[from])
-      if (e.to == to) e.certified = e.checked = true;
-}
+void Roadmap::markChecked(int a, int b) { mark(a, b, false); }
+void Roadmap::markCertified(int a, int b) { mark(a, b, true); }
 
 const Edge* Roadmap::find(int a, int b) const {
   for (const Edge& e : adjacency_[a])

@@ -63,6 +63,7 @@ class Roadmap {
 
  private:
   const Edge* find(int a, int b) const;  // the edge a-b in a's list, or nullptr
+  void mark(int a, int b, bool certified);  // checked, and certified when asked, both directions
   void recomputeComponents();
 
   std::vector<Eigen::VectorXd> nodes_;

@@ -78,34 +78,38 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
     const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {
       return context.space.distance(roadmap.node(v), goal);
     });
-    // Unchecked edges first, up to the first that fails (cheap, and most failures are there), then
-    // the proofs.
-    auto shared_too = [&](int u, int v, auto mark) {
-      mark(roadmap, u, v);
-      if (u < shared && v < shared) mark(*milestones, u, v);
+    // One pass over the path's edges not yet `done`: each that passes `test` is marked, the first
+    // that fails is removed (from the shared roadmap too) and ends the pass.
+    const auto pass = [&](auto done, auto test, auto mark) {
+      for (size_t i = 0; i + 1 < nodes.size(); ++i) {
+        const int u = nodes[i], v = nodes[i + 1];
+        if ((roadmap.*done)(u, v)) continue;
+        const bool free = test(roadmap.node(u), roadmap.node(v));
+        for (Roadmap* r : {&roadmap, u < shared && v < shared ? milestones : nullptr}) {
+          if (!r) continue;
+          if (free)
+            (r->*mark)(u, v);
+          else
+            r->removeEdge(u, v);
+        }
+        if (!free) return false;
+      }
+      return true;
     };
-    const auto remove = [](Roadmap& r, int u, int v) { r.removeEdge(u, v); };
-    bool disproved = false;
-    for (size_t i = 0; i + 1 < nodes.size() && !disproved; ++i) {
-      const int u = nodes[i], v = nodes[i + 1];
-      if (roadmap.isChecked(u, v)) continue;
+    // Unchecked edges first (cheap, and most failures are there), then the proofs.
+    const auto check = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       ++out.lazy_checks;
-      if (context.validator.isValid(roadmap.node(u), roadmap.node(v)))
-        shared_too(u, v, [](Roadmap& r, int a, int b) { r.markChecked(a, b); });
-      else
-        shared_too(u, v, remove), disproved = true;
-    }
-    for (size_t i = 0; context.certifier && i + 1 < nodes.size() && !disproved; ++i) {
-      const int u = nodes[i], v = nodes[i + 1];
-      if (roadmap.isCertified(u, v)) continue;
+      return context.validator.isValid(a, b);
+    };
+    const auto certify = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       const auto t0 = Clock::now();
-      const bool free = context.certifier->isValid(roadmap.node(u), roadmap.node(v));
+      const bool free = context.certifier->isValid(a, b);
       out.certify_ms += msSince(t0);
-      if (free)
-        shared_too(u, v, [](Roadmap& r, int a, int b) { r.markCertified(a, b); });
-      else
-        shared_too(u, v, remove), disproved = true;
-    }
+      return free;
+    };
+    const bool disproved =
+        !pass(&Roadmap::isChecked, check, &Roadmap::markChecked) ||
+        (context.certifier && !pass(&Roadmap::isCertified, certify, &Roadmap::markCertified));
     if (disproved) continue;
     for (int v : nodes) out.path.push_back(roadmap.node(v));
     out.certified = context.certifier != nullptr;

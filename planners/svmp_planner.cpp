@@ -537,6 +537,14 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       result.status = PlanStatus::kSolved;
       break;
     }
+    // A lazy roadmap that fails gives way to the thesis' eager MakeRoadmap (checked edges are kept),
+    // once per build, and the query runs again as round 0: eager connection reaches other components
+    // beyond the k nearest, and repair's frontiers need the components the roadmap has proven.
+    if (round == 0 && roadmap_.dropUnchecked() > 0) {
+      connectMilestones(roadmap_, *nn_, context_, options_.k, 0, stop);
+      --round;
+      continue;
+    }
     int start_size = 0, goal_size = 0;
     for (int i = 0; i < with_query.numNodes(); ++i) {
       start_size += with_query.connected(i, outcome.start_node);
@@ -551,15 +559,6 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       }
     }
     last_size = start_size + goal_size;
-    // A lazy roadmap that fails gives way to the thesis' eager MakeRoadmap (checked edges are kept),
-    // once per build, and the query runs again as round 0: eager connection reaches other components
-    // beyond the k nearest, and repair's frontiers need the components the roadmap has proven.
-    if (round == 0 && roadmap_.dropUnchecked() > 0) {
-      connectMilestones(roadmap_, *nn_, context_, options_.k, 0, stop);
-      last_size = -1;
-      --round;
-      continue;
-    }
     const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
     const bool repaired =
         budget && !stop() &&
