@@ -1,20 +1,22 @@
 #pragma once
 // Certified motion validation (Schwarzer, Saha and Latombe, "Exact collision checking of robot
 // paths", WAFR 2002 / IEEE T-RO 2005): a straight segment q(t) = a + t (b - a) is valid when proven
-// so, not when sampled. At a configuration q the exact checker gives d(q), a lower bound on the
-// distance from any link to any real obstacle and between non-adjacent links; the robot's
-// displacement bound L (robots/robot.hpp: no point of the robot moves farther than L t over [0, t]
-// of the segment) makes [t0, t1] free when d(t0) + d(t1) > (t1 - t0) L: the two free balls cover
-// the interval. Intervals that are not covered are bisected. A configuration closer than
-// `tolerance` to contact, or more than kMaxDistanceQueries queries for one segment, ends the proof
-// as not valid (never valid unless proven). FCL's continuous collision (conservative advancement)
-// would do the same for single bodies, but not for an articulated chain with self-collision pairs,
-// and it costs more per query; see docs/architecture.md. Each call counts one local planner call
-// here; each distance query one distance query in the exact checker.
+// so, not when sampled. Per link k, as they do: at a configuration q the exact checker gives d_k(q),
+// a lower bound on the distance from link k to every real obstacle and, for each non-adjacent pair
+// with k as its distal link, to the other link; the link's displacement bound L_k
+// (robots/robot.hpp: no point of link k moves farther than L_k t over [0, t] of the segment, also
+// relative to the links nearer the base) makes [t0, t1] free when d_k(t0) + d_k(t1) > (t1 - t0) L_k
+// for every k: the two free balls cover the interval. A link near the base, which moves little, no
+// longer needs the hand's bound. Intervals that are not covered are bisected. A configuration closer
+// than `tolerance` to contact, or more than kMaxDistanceQueries queries for one segment, ends the
+// proof as not valid (never valid unless proven). FCL's continuous collision (conservative
+// advancement) would do the same for single bodies, but not for an articulated chain with
+// self-collision pairs, and it costs more per query; see docs/architecture.md. Each call counts one
+// local planner call here; each distance query one distance query in the exact checker.
 //
-// d(q) is a separating plane's, not FCL's distance (FCL 0.7's GJK overestimates; see
-// cspace/convex_distance.hpp). Self-collision pairs may share the bound L: link b seen from link a
-// moves only by the joints between them, each inside its reach.
+// d_k is a separating plane's, not FCL's distance (FCL 0.7's GJK overestimates; see
+// cspace/convex_distance.hpp), and capped at L_k (more proves nothing), so distant pairs are skipped
+// by their bounding boxes.
 //
 // Tolerance: 1e-6 x resolution, read as a workspace length (a resolution step moves an arm's points
 // by at most about resolution x reach, reach ~1 m here), so a path that grazes an obstacle closer

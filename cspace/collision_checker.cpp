@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #include "cspace/convex_distance.hpp"
@@ -245,34 +247,54 @@ double objectDistance(fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::Co
 
 }  // namespace
 
-double CollisionChecker::freeDistance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+bool CollisionChecker::freeDistances(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::VectorXd& cap,
+                                     Eigen::VectorXd& d) const {
   robot_->checkConfiguration(q, "free distance");
+  if (cap.size() != robot_->numLinks())
+    throw std::invalid_argument("free distances: one cap per link, got " + std::to_string(cap.size()));
   distances_.fetch_add(1, std::memory_order_relaxed);
-  if (!robot_->withinLimits(q)) return 0;
+  d = cap;
+  if (!robot_->withinLimits(q)) {
+    d.setZero();
+    return false;
+  }
   Workspace& ws = workspace();
   placeRobot(ws, q);
-  double best = std::numeric_limits<double>::infinity();
-  // The AABBs' distance bounds the shapes' from below: a pair farther than the best so far is
-  // skipped.
-  auto consider = [&](fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::CollisionObjectd* b,
-                      const robots::Shape& sb) {
-    if (a->getAABB().distance(b->getAABB()) < best)
-      best = std::min(best, objectDistance(a, sa, b, sb));
+  // The AABBs' distance bounds the shapes' from below: a pair farther than the link's best so far
+  // (or its cap) is skipped. Returns true at contact.
+  auto touches = [&](int link, fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::CollisionObjectd* b,
+                     const robots::Shape& sb) {
+    double& best = d[link];
+    if (a->getAABB().distance(b->getAABB()) < best) best = std::min(best, objectDistance(a, sa, b, sb));
     return best == 0;
   };
-  for (int i = 0; i < robot_->numLinks(); ++i)
-    for (size_t k = 0; k < ws.links[i].size(); ++k)
+  bool contact = false;
+  for (int i = 0; i < robot_->numLinks() && !contact; ++i)
+    for (size_t k = 0; k < ws.links[i].size() && !contact; ++k)
       for (const auto& o : env_->obstacles())
-        if (!o.is_virtual && consider(ws.links[i][k].get(), robot_->linkShapes(i)[k],
-                                      ws.obstacles[o.id - 1].get(), o.shape))
-          return 0;
-  for (const auto& [a, b] : self_pairs_)
-    for (size_t ka = 0; ka < ws.links[a].size(); ++ka)
-      for (size_t kb = 0; kb < ws.links[b].size(); ++kb)
-        if (consider(ws.links[a][ka].get(), robot_->linkShapes(a)[ka], ws.links[b][kb].get(),
-                     robot_->linkShapes(b)[kb]))
-          return 0;
-  return best;
+        if (!o.is_virtual && touches(i, ws.links[i][k].get(), robot_->linkShapes(i)[k],
+                                     ws.obstacles[o.id - 1].get(), o.shape)) {
+          contact = true;
+          break;
+        }
+  // A self pair counts for its distal link, whose bound covers its motion relative to the other.
+  for (const auto& [a, b] : self_pairs_) {
+    if (contact) break;
+    const int distal = std::max(a, b);
+    for (size_t ka = 0; ka < ws.links[a].size() && !contact; ++ka)
+      for (size_t kb = 0; kb < ws.links[b].size() && !contact; ++kb)
+        contact = touches(distal, ws.links[a][ka].get(), robot_->linkShapes(a)[ka], ws.links[b][kb].get(),
+                          robot_->linkShapes(b)[kb]);
+  }
+  if (contact) d.setZero();
+  return !contact;
+}
+
+double CollisionChecker::freeDistance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  thread_local Eigen::VectorXd d;
+  const Eigen::VectorXd cap =
+      Eigen::VectorXd::Constant(robot_->numLinks(), std::numeric_limits<double>::infinity());
+  return freeDistances(q, cap, d) ? d.minCoeff() : 0.0;
 }
 
 }  // namespace svmp::cspace

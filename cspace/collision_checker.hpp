@@ -43,8 +43,13 @@ class CollisionChecker final : public ValidityChecker {
   // may move before it can touch anything (0 when touching or penetrating, or outside joint limits;
   // +inf with nothing to hit). Each pair's value is a separating plane's
   // (cspace/convex_distance.hpp), never FCL's distance taken on trust. Counts one distance query.
-  // Used by the certified motion validator.
   double freeDistance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  // The same per link, for the certified motion validator: d[k] bounds the distance from link k to
+  // the real obstacles and, for each self pair, from the pair's distal link k to the other, capped at
+  // cap[k] (pairs farther than the cap are not computed). Returns false, d all 0, when anything
+  // touches or q is outside the joint limits. Counts one distance query.
+  bool freeDistances(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::VectorXd& cap,
+                     Eigen::VectorXd& d) const;
 
   std::uint64_t collisionChecks() const override { return checks_.load(std::memory_order_relaxed); }
   std::uint64_t distanceQueries() const override { return distances_.load(std::memory_order_relaxed); }

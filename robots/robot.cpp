@@ -41,6 +41,15 @@ double Robot::displacementBound(const Eigen::Ref<const Eigen::VectorXd>& a,
   return joint_reach_.dot((b - a).cwiseAbs());
 }
 
+void Robot::linkDisplacementBounds(const Eigen::Ref<const Eigen::VectorXd>& a,
+                                   const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::VectorXd& bounds) const {
+  if (link_reach_.rows() == 0) {
+    bounds.setConstant(numLinks(), displacementBound(a, b));
+    return;
+  }
+  bounds.noalias() = link_reach_ * (b - a).cwiseAbs();
+}
+
 void Robot::setChainReach(const std::vector<double>& origin_offset) {
   const int n = numLinks();
   if (static_cast<int>(origin_offset.size()) != n || n != dof())
@@ -48,15 +57,15 @@ void Robot::setChainReach(const std::vector<double>& origin_offset) {
   std::vector<double> link_reach(n, 0.0);
   for (int k = 0; k < n; ++k)
     for (const Shape& s : link_shapes_[k]) link_reach[k] = std::max(link_reach[k], s.reach());
-  joint_reach_.resize(n);
+  link_reach_.setZero(n, n);
   for (int j = 0; j < n; ++j) {
-    double along = 0, best = 0;
+    double along = 0;
     for (int k = j; k < n; ++k) {
       if (k > j) along += origin_offset[k];
-      best = std::max(best, along + link_reach[k]);
+      link_reach_(k, j) = along + link_reach[k];
     }
-    joint_reach_[j] = best;
   }
+  joint_reach_ = link_reach_.colwise().maxCoeff().transpose();
 }
 
 void Robot::checkConfiguration(const Eigen::Ref<const Eigen::VectorXd>& q, const char* where) const {

@@ -46,6 +46,11 @@ class Robot {
   // revolute chain, reach_j bounding the distance from joint j's axis to every point it moves.
   virtual double displacementBound(const Eigen::Ref<const Eigen::VectorXd>& a,
                                    const Eigen::Ref<const Eigen::VectorXd>& b) const;
+  // The same bound per link (bounds resized to numLinks()): link k of a chain moves only by joints
+  // 0..k, sum_{j <= k} reach_jk |b_j - a_j|, which also bounds its motion relative to any link a < k
+  // (only joints a+1..k move it there). Without a chain reach every link gets displacementBound.
+  void linkDisplacementBounds(const Eigen::Ref<const Eigen::VectorXd>& a,
+                              const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::VectorXd& bounds) const;
   const Eigen::VectorXd& jointReach() const { return joint_reach_; }
 
   // Throws std::invalid_argument naming the problem when q has the wrong size or is not finite.
@@ -63,6 +68,7 @@ class Robot {
   int workspace_dim_;
   std::vector<std::vector<Shape>> link_shapes_;
   Eigen::VectorXd joint_reach_;
+  Eigen::MatrixXd link_reach_;  // (link k, joint j): reach of joint j over link k's points, 0 for j > k
 };
 
 }  // namespace svmp::robots
