@@ -22,14 +22,16 @@ bool CertifiedMotionValidator::prove(const Eigen::Ref<const Eigen::VectorXd>& a,
   Eigen::VectorXd bound;  // per link, over the whole segment
   exact_.robot().linkDisplacementBounds(a, b, bound);
   const double length = bound.maxCoeff();
-  // A distance beyond a link's whole displacement proves no more; 2 tolerances keep a link that
-  // does not move provable.
-  const Eigen::VectorXd cap = bound.array() + 2 * tolerance_;
+  // A point is used only in intervals of at most `span`: a distance beyond the link's displacement
+  // over the span proves no more, so it is capped there (2 tolerances keep a link that does not
+  // move provable), and pairs beyond the cap are skipped by their bounding boxes.
+  Eigen::VectorXd cap;
   // Per query r: the per-link distances at links * r, and their minimum.
   const int links = static_cast<int>(bound.size());
   std::vector<double> distances, closest;
   Eigen::VectorXd q(a.size()), d;
-  auto distanceAt = [&](double t) {
+  auto distanceAt = [&](double t, double span) {
+    cap = span * bound.array() + 2 * tolerance_;
     space_.interpolate(a, b, t, q);
     exact_.freeDistances(q, cap, d);
     distances.insert(distances.end(), d.data(), d.data() + links);
@@ -43,7 +45,7 @@ bool CertifiedMotionValidator::prove(const Eigen::Ref<const Eigen::VectorXd>& a,
       if (!(distances[links * r0 + k] + distances[links * r1 + k] > span * bound[k])) return false;
     return true;
   };
-  const int r0 = distanceAt(0);
+  const int r0 = distanceAt(0, 1);
   bool ok = closest[r0] > tolerance_;
   if (ok && !(length > 0)) {  // no motion: the start is the whole segment
     proven = 1;
@@ -55,7 +57,7 @@ bool CertifiedMotionValidator::prove(const Eigen::Ref<const Eigen::VectorXd>& a,
       double t1;
       int r1;
     };
-    std::vector<Interval> stack = {{0, r0, 1, distanceAt(1)}};
+    std::vector<Interval> stack = {{0, r0, 1, distanceAt(1, 1)}};
     ok = closest[stack.back().r1] > tolerance_;
     if (!ok && !need_prefix) stack.clear();  // an end in contact fails at once
     while (!stack.empty()) {
@@ -75,7 +77,7 @@ bool CertifiedMotionValidator::prove(const Eigen::Ref<const Eigen::VectorXd>& a,
         ok = false;
         break;
       }
-      const int rm = distanceAt(mid);
+      const int rm = distanceAt(mid, 0.5 * (i.t1 - i.t0));
       if (closest[rm] <= tolerance_) {
         ok = false;
         // Nothing beyond mid can be proven; with need_prefix, push the proven prefix towards it.

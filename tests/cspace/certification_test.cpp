@@ -190,7 +190,7 @@ TEST(Certification, DisplacementBoundIsNeverExceededBySampledMotion) {
               points.emplace_back((corner & 1 ? 0.5 : -0.5) * s.dims.x(), (corner & 2 ? 0.5 : -0.5) * s.dims.y(),
                                   sign * 0.5 * s.dims.z());
           } else if (s.kind == robots::ShapeKind::kCylinder) {
-            for (const Eigen::Vector2d rim : {Eigen::Vector2d(r, 0), Eigen::Vector2d(-r, 0), Eigen::Vector2d(0, r),
+            for (const Eigen::Vector2d& rim : {Eigen::Vector2d(r, 0), Eigen::Vector2d(-r, 0), Eigen::Vector2d(0, r),
                                               Eigen::Vector2d(0, -r)})
               points.emplace_back(rim.x(), rim.y(), sign * h);
           } else {
