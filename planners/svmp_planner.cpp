@@ -10,6 +10,7 @@
 
 #include "planners/planner_registry.hpp"
 #include "planners/class_colouring.hpp"
+#include "planners/tree_connect.hpp"
 #include "planners/roadmap_builder.hpp"
 
 namespace svmp::planners {
@@ -31,6 +32,8 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.duplicate_radius = params.getDouble("duplicate_radius", o.duplicate_radius, 0, 1e6);
   o.repair_rounds = static_cast<int>(params.getInt("repair_rounds", o.repair_rounds, 0, 1000));
   o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
+  o.repair_trees = params.getBool("repair_trees", o.repair_trees);
+  o.tree_range = params.getDouble("tree_range", o.tree_range, -1, 1e6);
   o.interior_fraction = params.getDouble("interior_fraction", o.interior_fraction, 0, 1);
   o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
   o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
@@ -47,6 +50,7 @@ std::string SvmpOptions::validate() const {
   if (!positiveOrDerived(step)) return "step must be positive, got " + std::to_string(step);
   if (samples_per_tree < 1 || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0)
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2)";
+  if (!positiveOrDerived(tree_range)) return "tree_range must be positive, got " + std::to_string(tree_range);
   if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
   if (kernel != "rbf" && kernel != "fk") return "kernel must be rbf or fk, got " + kernel;
   if (classes != "auto" && classes != "obstacle" && classes != "colour")
@@ -62,6 +66,7 @@ SvmpOptions SvmpOptions::resolvedFor(const cspace::ConfigurationSpace& space) co
   if (o.step == kDerived)
     o.step = (space.upper() - space.lower()).cwiseProduct(space.metricScale()).mean() / 40;
   if (o.sigma == kDerived) o.sigma = 2 * o.step;
+  if (o.tree_range == kDerived) o.tree_range = 0.2 * space.distance(space.lower(), space.upper());
   return o;
 }
 
@@ -96,6 +101,7 @@ void SvmpPlanner::clear() {
   samples_ = {};
   risk_.reset();
   roadmap_.clear();
+  grown_by_trees_.clear();
   nn_.reset();
 }
 
@@ -435,10 +441,13 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   // The closest pair between the start's and the goal's components: the nearest outside nodes may
   // lead into dead ends while the two grow along one passage towards each other.
   Frontier between{-1, -1, std::numeric_limits<double>::infinity(), false};
-  std::vector<int> goal_side;
+  const int old_n = roadmap_.numNodes();
+  std::vector<int> start_side, goal_side;
   std::vector<Eigen::VectorXd> goal_points;
-  for (int j = 0; j < roadmap_.numNodes(); ++j)
+  for (int j = 0; j < old_n; ++j) {
+    if (with_query.connected(start_node, j)) start_side.push_back(j);
     if (with_query.connected(goal_node, j)) goal_side.push_back(j), goal_points.push_back(roadmap_.node(j));
+  }
   if (!goal_side.empty()) {
     const NearestNeighbors goal_nn(goal_points, scale);
     for (int i = 0; i < with_query.numNodes(); ++i) {
@@ -468,8 +477,19 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     why = "no node outside the start's and goal's components to guide samples towards";
     return false;
   }
-  const int old_n = roadmap_.numNodes();
   int added = 0;
+  if (options_.repair_trees) {
+    const TreeConnectResult trees = connectByTrees(roadmap_, start_side, goal_side, context_, options_.tree_range,
+                                                   options_.repair_samples, rng, stop);
+    added += trees.added;
+    grown_by_trees_.resize(old_n, false);
+    grown_by_trees_.resize(roadmap_.numNodes(), true);
+    if (trees.connected) {
+      nn_.emplace(roadmap_.nodes(), scale);
+      connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
+      return true;
+    }
+  }
   for (const Frontier& f : frontiers) added += bridge(with_query.node(f.a), f.a < old_n ? f.a : -1, f.b);
   // Milestones as close as a quarter of the disconnection: a passage narrower than the usual
   // duplicate radius needs them.
@@ -545,20 +565,23 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       --round;
       continue;
     }
-    int start_size = 0, goal_size = 0;
+    // Progress is the guided repair's: the trees' nodes grow the components every round.
+    int start_size = 0, goal_size = 0, guided = 0;
     for (int i = 0; i < with_query.numNodes(); ++i) {
+      const bool in = with_query.connected(i, outcome.start_node) || with_query.connected(i, outcome.goal_node);
       start_size += with_query.connected(i, outcome.start_node);
       goal_size += with_query.connected(i, outcome.goal_node);
+      guided += in && (i >= static_cast<int>(grown_by_trees_.size()) || !grown_by_trees_[i]);
     }
     if (round > 0) {
-      if (start_size + goal_size > last_size) {
+      if (guided > last_size) {
         widen = 1.0;
       } else {
         ++spent;
         widen = std::min(8.0, 2.0 * widen);
       }
     }
-    last_size = start_size + goal_size;
+    last_size = guided;
     const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
     const bool repaired =
         budget && !stop() &&

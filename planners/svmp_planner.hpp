@@ -48,6 +48,11 @@ struct SvmpOptions {
   // or goal's component costs none, up to 4 x repair_rounds rounds in all.
   int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
+  // Each repair round also grows RRT-Connect trees from the start's and the goal's components
+  // (planners/tree_connect.hpp), repair_samples uniform samples, steps of tree_range (weighted
+  // metric; kDerived: OMPL's default range for RRTConnect, a fifth of the space's diagonal).
+  bool repair_trees = true;
+  double tree_range = kDerived;
   // Share of the interior (non-boundary) obstacle samples the SVMs train on; every boundary sample
   // is kept. Interior samples far from other classes are rarely support vectors yet cost training
   // time; 0.1 cut panda_shelf's training from 45% to 21% of its time at the same success (Fig 4.4:
@@ -139,6 +144,7 @@ class SvmpPlanner final : public Planner {
   std::optional<RiskFunction> risk_;
   Roadmap roadmap_;
   std::optional<NearestNeighbors> nn_;
+  std::vector<bool> grown_by_trees_;  // roadmap_ nodes the repair's trees added (by index; shorter: no)
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
 };
 

@@ -2,12 +2,15 @@
 // narrow passage that SVMP's boundary milestones are made for.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "planners/path_simplifier.hpp"
 #include "planners/prm_planner.hpp"
 #include "planners/roadmap_builder.hpp"
 #include "planners/svmp_planner.hpp"
+#include "planners/tree_connect.hpp"
 #include "test_world.hpp"
 
 namespace svmp::planners {
@@ -384,6 +387,66 @@ TEST(NarrowPassage, SvmpRepairSaysWhyItStopped) {
     }
   }
   EXPECT_GT(failures, 0);  // the test must see the message
+}
+
+// RRT-Connect between two components (planners/tree_connect.hpp): the left side's two nodes and the
+// right side's one are joined through the 0.03 gap, on edges free under a dense re-check (up to
+// the corner a check at the resolution may clip), and the
+// same seed grows the same trees.
+TEST(TreeConnect, JoinsTwoComponentsThroughTheGapOnFreeEdges) {
+  auto w = makeWorld(gapScenario(0.03, kPlanners));
+  auto grow = [&](std::uint64_t seed, Roadmap& roadmap) {
+    for (auto [x, y] : {std::pair{0.2, 0.1}, {0.1, 0.3}, {0.8, 0.9}}) roadmap.addNode(Eigen::Vector2d(x, y));
+    roadmap.addEdge(0, 1, w->space.distance(roadmap.node(0), roadmap.node(1)));
+    cspace::Rng rng(seed);
+    return connectByTrees(roadmap, {0, 1}, {2}, w->context, 0.1, 20000, rng);
+  };
+  const cspace::CollisionChecker independent(w->scenario.robot, w->scenario.environment);
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    Roadmap roadmap, again;
+    const TreeConnectResult out = grow(seed, roadmap);
+    ASSERT_TRUE(out.connected) << "seed " << seed << ": " << out.samples << " samples";
+    EXPECT_TRUE(roadmap.connected(0, 2));
+    EXPECT_EQ(roadmap.numNodes(), 3 + out.added);
+    for (int a = 0; a < roadmap.numNodes(); ++a)
+      for (const Edge& e : roadmap.neighbours(a)) {
+        EXPECT_TRUE(e.checked);
+        if (std::max(a, e.to) >= 3) {  // a tree's step
+          EXPECT_LE(w->space.distance(roadmap.node(a), roadmap.node(e.to)), 0.1 + 1e-12);
+        }
+        // Checked at the resolution: it may clip a corner between two checks, never more.
+        const Eigen::VectorXd u = roadmap.node(a), v = roadmap.node(e.to);
+        int run = 0;
+        for (int s = 0; s <= 400; ++s) {
+          run = independent.check(u + (s / 400.0) * (v - u)) == cspace::kFree ? 0 : run + 1;
+          ASSERT_LE((run + 1) * w->space.distance(u, v) / 400, w->scenario.resolution) << "edge " << a << "-" << e.to;
+        }
+      }
+    const TreeConnectResult repeat = grow(seed, again);
+    EXPECT_EQ(repeat.samples, out.samples);
+    EXPECT_EQ(again.nodes().back(), roadmap.nodes().back());
+  }
+  Roadmap none;
+  none.addNode(Eigen::Vector2d(0.2, 0.1));
+  cspace::Rng rng(1);
+  EXPECT_EQ(connectByTrees(none, {0}, {}, w->context, 0.1, 100, rng).samples, 0) << "no tree to connect to";
+}
+
+// Fig 4.4's seeds 4, 5 and 11 ended with the start's and the goal's components (1,300 and 500-1,100
+// nodes) unjoined after 20 SVM-guided repair rounds; the trees join them. Certified, densely free.
+TEST(TreeConnect, SvmpRepairSolvesFig44WhereGuidedRoundsAloneDidNot) {
+  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig4_4.yaml";
+  std::ifstream in(path);
+  std::stringstream yaml;
+  yaml << in.rdbuf();
+  auto w = makeWorld(yaml.str());
+  w->certify();
+  for (std::uint64_t seed : {4, 5, 11}) {
+    const PlanResult r = w->planner("svmp")->solve(w->query(), seed);
+    ASSERT_TRUE(r.solved()) << "seed " << seed << ": " << r.message;
+    EXPECT_TRUE(r.certified);
+    EXPECT_TRUE(pathIsValid(*w, r.path, w->scenario.resolution)) << "seed " << seed;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,61 @@
+#include "planners/tree_connect.hpp"
+
+#include <limits>
+#include <utility>
+
+namespace svmp::planners {
+
+namespace {
+
+// The trees are a few thousand nodes at most: a linear scan is cheaper than keeping an index.
+int nearestIn(const Roadmap& roadmap, const std::vector<int>& tree, const Eigen::VectorXd& q,
+              const cspace::ConfigurationSpace& space) {
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int i : tree)
+    if (const double d = space.distance(roadmap.node(i), q); d < best_d) best = i, best_d = d;
+  return best;
+}
+
+// One checked step of at most `range` from node `from` towards q; the new node, or -1 when blocked.
+int extend(Roadmap& roadmap, std::vector<int>& tree, int from, const Eigen::VectorXd& q,
+           const PlanningContext& context, double range) {
+  const Eigen::VectorXd next = context.space.steer(roadmap.node(from), q, range);
+  if (!context.validator.isValid(roadmap.node(from), next)) return -1;
+  const int node = roadmap.addNode(next);
+  roadmap.addEdge(from, node, context.space.distance(roadmap.node(from), next));
+  tree.push_back(node);
+  return node;
+}
+
+}  // namespace
+
+TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vector<int> b,
+                                 const PlanningContext& context, double range, int samples, cspace::Rng& rng,
+                                 const Termination& stop) {
+  TreeConnectResult out;
+  if (a.empty() || b.empty() || !(range > 0)) return out;
+  const cspace::ConfigurationSpace& space = context.space;
+  for (; out.samples < samples && !stop(); ++out.samples, std::swap(a, b)) {
+    const Eigen::VectorXd q = space.sampleUniform(rng);
+    const int grown = extend(roadmap, a, nearestIn(roadmap, a, q, space), q, context, range);
+    if (grown < 0) continue;
+    ++out.added;
+    const Eigen::VectorXd target = roadmap.node(grown);
+    for (int tip = nearestIn(roadmap, b, target, space);;) {
+      const double gap = space.distance(roadmap.node(tip), target);
+      if (gap <= range) {
+        if (!context.validator.isValid(roadmap.node(tip), target)) break;
+        roadmap.addEdge(tip, grown, gap);
+        out.connected = true;
+        return out;
+      }
+      tip = extend(roadmap, b, tip, target, context, range);
+      if (tip < 0) break;
+      ++out.added;
+    }
+  }
+  return out;
+}
+
+}  // namespace svmp::planners

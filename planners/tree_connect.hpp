@@ -1,0 +1,32 @@
+#pragma once
+// Joining two roadmap components by RRT-Connect (Kuffner and LaValle, ICRA 2000), with each component
+// as one tree whose nodes are all roots, as the sampling-based roadmap of trees does (Plaku, Bekris,
+// Chen, Ladd and Kavraki, IEEE T-RO 2005). Each uniform sample extends one tree by one step of
+// `range` from its nearest node; the other tree then connects towards the new node step by step
+// until it reaches it (the components are joined) or is blocked; the trees swap roles. SVMP's repair
+// (planners/svmp_planner.cpp) runs it in each round beside the SVM-guided samples: where the
+// decision boundaries do not lead through a passage, the trees still explore it.
+// Every motion is checked by the context's validator; new nodes and edges join the roadmap checked
+// (the query proves the edges its path uses).
+#include <vector>
+
+#include "cspace/configuration_space.hpp"
+#include "planners/planner.hpp"
+#include "planners/roadmap.hpp"
+#include "planners/termination.hpp"
+
+namespace svmp::planners {
+
+struct TreeConnectResult {
+  int samples = 0;         // uniform samples drawn
+  int added = 0;           // new nodes
+  bool connected = false;  // the trees met: one edge joins the two components
+};
+
+// Grows the trees from the roadmap nodes `a` and `b` (two components) for up to `samples` samples.
+// Returns at once when either set is empty or range is not positive.
+TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vector<int> b,
+                                 const PlanningContext& context, double range, int samples, cspace::Rng& rng,
+                                 const Termination& stop = {});
+
+}  // namespace svmp::planners
