@@ -479,8 +479,10 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   }
   int added = 0;
   if (options_.repair_trees) {
+    // A stream of their own, so the trees leave the guided samples' draws as they were.
+    cspace::Rng tree_rng(rng());
     const TreeConnectResult trees = connectByTrees(roadmap_, start_side, goal_side, context_, options_.tree_range,
-                                                   options_.repair_samples, rng, stop);
+                                                   options_.repair_samples, tree_rng, stop);
     added += trees.added;
     grown_by_trees_.resize(old_n, false);
     grown_by_trees_.resize(roadmap_.numNodes(), true);
