@@ -411,7 +411,7 @@ bool SvmpPlanner::makeRoadmap(PhaseTimes& times, const Termination& stop) {
 }
 
 bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, double widen,
-                         cspace::Rng& rng, const Termination& stop, std::string& why) {
+                         cspace::Rng& rng, cspace::Rng& tree_rng, const Termination& stop, std::string& why) {
   // Frontier of a component: its node closest to a node outside it. Random configurations around the
   // segment between the two are guided down to the decision boundaries (thesis ch. 3.5).
   const Eigen::VectorXd& scale = context_.space.metricScale();
@@ -478,32 +478,39 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     return false;
   }
   int added = 0;
-  if (options_.repair_trees) {
-    // A stream of their own, so the trees leave the guided samples' draws as they were.
-    cspace::Rng tree_rng(rng());
-    const TreeConnectResult trees = connectByTrees(roadmap_, start_side, goal_side, context_, options_.tree_range,
-                                                   options_.repair_samples, tree_rng, stop);
-    added += trees.added;
-    grown_by_trees_.resize(old_n, false);
-    grown_by_trees_.resize(roadmap_.numNodes(), true);
-    if (trees.connected) {
-      nn_.emplace(roadmap_.nodes(), scale);
-      connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
-      return true;
-    }
-  }
   for (const Frontier& f : frontiers) added += bridge(with_query.node(f.a), f.a < old_n ? f.a : -1, f.b);
   // Milestones as close as a quarter of the disconnection: a passage narrower than the usual
   // duplicate radius needs them.
   added += addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true,
                          std::min(options_.duplicate_radius, 0.25 * narrowest));
+  const int guided_end = roadmap_.numNodes();
+  if (added > 0) {
+    nn_.emplace(roadmap_.nodes(), scale);
+    connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
+  }
+  // Where the guided nodes did not join the two, trees grown from both (planners/tree_connect.hpp).
+  if (options_.repair_trees && !start_side.empty() && !goal_side.empty() && !stop() &&
+      !roadmap_.connected(start_side.front(), goal_side.front())) {
+    std::vector<int> start_tree, goal_tree;
+    for (int j = 0; j < guided_end; ++j) {
+      if (roadmap_.connected(j, start_side.front())) start_tree.push_back(j);
+      if (roadmap_.connected(j, goal_side.front())) goal_tree.push_back(j);
+    }
+    const TreeConnectResult trees = connectByTrees(roadmap_, start_tree, goal_tree, context_, options_.tree_range,
+                                                   options_.repair_samples, tree_rng, stop);
+    grown_by_trees_.resize(guided_end, false);
+    grown_by_trees_.resize(roadmap_.numNodes(), true);
+    if (trees.added > 0) {
+      added += trees.added;
+      nn_.emplace(roadmap_.nodes(), scale);
+      connectMilestones(roadmap_, *nn_, context_, options_.k, guided_end, stop);
+    }
+  }
   if (added == 0) {
     why = "the last round's " + std::to_string(starts.size()) + " guided samples gave no new free milestone";
     return true;  // another round draws new samples
   }
   why.clear();
-  nn_.emplace(roadmap_.nodes(), scale);
-  connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
   return true;
 }
 
@@ -541,7 +548,7 @@ void SvmpPlanner::fillCounters(PlanResult& result) const {
 void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
                          PlanResult& result) {
   const auto t0 = Clock::now();
-  cspace::Rng rng(seed ^ 0xA5A5A5A5ULL);
+  cspace::Rng rng(seed ^ 0xA5A5A5A5ULL), tree_rng(seed ^ 0x5A5A5A5AULL);
   std::string why = options_.repair_rounds == 0 ? "repair_rounds is 0" : "";  // why still not connected
   // A round that grows the start's or the goal's component is progress and costs no budget (up to
   // kMaxRoundsFactor x repair_rounds rounds in all); one without progress spends a round and doubles
@@ -587,7 +594,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
     const bool repaired =
         budget && !stop() &&
-        repair(with_query, outcome.start_node, outcome.goal_node, widen, rng, stop, why);
+        repair(with_query, outcome.start_node, outcome.goal_node, widen, rng, tree_rng, stop, why);
     if (stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached after " + std::to_string(round) + " repair rounds";

@@ -119,9 +119,10 @@ class SvmpPlanner final : public Planner {
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
                     const Termination& stop, bool keep_free_starts = false, double duplicate_radius = -1);
   // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
-  // round added nothing.
+  // round added nothing. The trees draw from tree_rng, so the guided samples' draws do not depend on
+  // them.
   bool repair(Roadmap& with_query, int start_node, int goal_node, double widen, cspace::Rng& rng,
-              const Termination& stop, std::string& why);
+              cspace::Rng& tree_rng, const Termination& stop, std::string& why);
   // Links `a` (roadmap node a_node, or -1 for a query's endpoint) to node b_node along the decision
   // boundary: a blocked segment is split at a tangent step from either end or at its middle pulled
   // onto the boundary, each placed in the passage (inPassage), recursively. Straight segments between
