@@ -442,10 +442,11 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   // lead into dead ends while the two grow along one passage towards each other.
   Frontier between{-1, -1, std::numeric_limits<double>::infinity(), false};
   const int old_n = roadmap_.numNodes();
-  std::vector<int> start_side, goal_side;
+  int start_root = -1;  // a roadmap node in the start's component
+  std::vector<int> goal_side;
   std::vector<Eigen::VectorXd> goal_points;
   for (int j = 0; j < old_n; ++j) {
-    if (with_query.connected(start_node, j)) start_side.push_back(j);
+    if (start_root < 0 && with_query.connected(start_node, j)) start_root = j;
     if (with_query.connected(goal_node, j)) goal_side.push_back(j), goal_points.push_back(roadmap_.node(j));
   }
   if (!goal_side.empty()) {
@@ -489,11 +490,11 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
   }
   // Where the guided nodes did not join the two, trees grown from both (planners/tree_connect.hpp).
-  if (options_.repair_trees && !start_side.empty() && !goal_side.empty() && !stop() &&
-      !roadmap_.connected(start_side.front(), goal_side.front())) {
+  if (options_.repair_trees && start_root >= 0 && !goal_side.empty() && !stop() &&
+      !roadmap_.connected(start_root, goal_side.front())) {
     std::vector<int> start_tree, goal_tree;
     for (int j = 0; j < guided_end; ++j) {
-      if (roadmap_.connected(j, start_side.front())) start_tree.push_back(j);
+      if (roadmap_.connected(j, start_root)) start_tree.push_back(j);
       if (roadmap_.connected(j, goal_side.front())) goal_tree.push_back(j);
     }
     const TreeConnectResult trees = connectByTrees(roadmap_, start_tree, goal_tree, context_, options_.tree_range,
