@@ -268,24 +268,23 @@ bool CollisionChecker::freeDistances(const Eigen::Ref<const Eigen::VectorXd>& q,
     if (a->getAABB().distance(b->getAABB()) < best) best = std::min(best, objectDistance(a, sa, b, sb));
     return best == 0;
   };
-  bool contact = false;
-  for (int i = 0; i < robot_->numLinks() && !contact; ++i)
-    for (size_t k = 0; k < ws.links[i].size() && !contact; ++k)
-      for (const auto& o : env_->obstacles())
-        if (!o.is_virtual && touches(i, ws.links[i][k].get(), robot_->linkShapes(i)[k],
-                                     ws.obstacles[o.id - 1].get(), o.shape)) {
-          contact = true;
-          break;
-        }
-  // A self pair counts for its distal link, whose bound covers its motion relative to the other.
-  for (const auto& [a, b] : self_pairs_) {
-    if (contact) break;
-    const int distal = std::max(a, b);
-    for (size_t ka = 0; ka < ws.links[a].size() && !contact; ++ka)
-      for (size_t kb = 0; kb < ws.links[b].size() && !contact; ++kb)
-        contact = touches(distal, ws.links[a][ka].get(), robot_->linkShapes(a)[ka], ws.links[b][kb].get(),
-                          robot_->linkShapes(b)[kb]);
-  }
+  auto anyContact = [&] {
+    for (int i = 0; i < robot_->numLinks(); ++i)
+      for (size_t k = 0; k < ws.links[i].size(); ++k)
+        for (const auto& o : env_->obstacles())
+          if (!o.is_virtual && touches(i, ws.links[i][k].get(), robot_->linkShapes(i)[k],
+                                       ws.obstacles[o.id - 1].get(), o.shape))
+            return true;
+    // A self pair counts for its distal link, whose bound covers its motion relative to the other.
+    for (const auto& [a, b] : self_pairs_)
+      for (size_t ka = 0; ka < ws.links[a].size(); ++ka)
+        for (size_t kb = 0; kb < ws.links[b].size(); ++kb)
+          if (touches(std::max(a, b), ws.links[a][ka].get(), robot_->linkShapes(a)[ka], ws.links[b][kb].get(),
+                      robot_->linkShapes(b)[kb]))
+            return true;
+    return false;
+  };
+  const bool contact = anyContact();
   if (contact) d.setZero();
   return !contact;
 }

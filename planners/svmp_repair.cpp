@@ -1,0 +1,179 @@
+// SVMP's query repair (thesis ch. 3.5, future work; docs/reproduction.md "Repair along the decision
+// boundary" and "Trees in repair"): each round takes the narrowest pairs of the disconnection,
+// bridges them along the decision boundary, guides random samples around them down to the boundary,
+// and where those do not join the start's and the goal's components grows RRT-Connect trees from both.
+#include <functional>
+#include <limits>
+#include <random>
+
+#include "planners/roadmap_builder.hpp"
+#include "planners/svmp_planner.hpp"
+#include "planners/tree_connect.hpp"
+
+namespace svmp::planners {
+
+int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
+  constexpr int kMaxDepth = 8, kMaxSplits = 32;
+  int splits = 0, added = 0;
+  const DescentOptions descent = options_.descent();
+  const Eigen::VectorXd& scale = context_.space.metricScale();
+  // From `from` towards `to` within the boundary's tangent plane at `from`: inside a passage the
+  // boundary runs along it, so this follows the passage out of its mouth.
+  auto tangentStep = [&](const Eigen::VectorXd& from, const Eigen::VectorXd& to) -> std::optional<Eigen::VectorXd> {
+    const int k = nearestBoundary(from);
+    Eigen::VectorXd grad(from.size());
+    risk_->decisionAndGradient(k, from, grad);
+    Eigen::VectorXd normal = grad.cwiseQuotient(scale);
+    if (!(normal.norm() > 0)) return std::nullopt;
+    normal.normalize();
+    Eigen::VectorXd x = (to - from).cwiseProduct(scale);
+    x -= x.dot(normal) * normal;
+    Eigen::VectorXd m = from + x.cwiseQuotient(scale);
+    context_.space.clamp(m);
+    return inPassage(k, m);
+  };
+  // The middle pulled onto the nearest boundary (centred in the passage when it collides there).
+  auto boundaryMiddle = [&](const Eigen::VectorXd& pa, const Eigen::VectorXd& pb) {
+    const Eigen::VectorXd middle = 0.5 * (pa + pb);
+    const int k = nearestBoundary(middle);
+    return inPassage(k, risk_->descend(k, middle, context_.space, descent).q);
+  };
+  // A segment is checked, then proved where the query will prove it (at a passage's mouth the sampled
+  // check may cut a corner; proving a blocked segment first would cost far more).
+  // A blocked a-b is split at a point nearer to both ends, and each half linked the same way. The
+  // split point is tried as a tangent step from either end, then as the boundary middle.
+  std::function<bool(const Eigen::VectorXd&, int, const Eigen::VectorXd&, int, int)> link =
+      [&](const Eigen::VectorXd& pa, int ia, const Eigen::VectorXd& pb, int ib, int depth) {
+        const double length = context_.space.distance(pa, pb);
+        if (context_.validator.isValid(pa, pb) && (!context_.certifier || context_.certifier->isValid(pa, pb))) {
+          if (ia >= 0 && ib >= 0) {
+            roadmap_.addEdge(ia, ib, length);
+            if (context_.certifier) roadmap_.markCertified(ia, ib);
+          }
+          return true;
+        }
+        if (depth == 0) return false;
+        auto nearer = [&](const std::optional<Eigen::VectorXd>& m) {
+          return m && context_.space.distance(pa, *m) < length && context_.space.distance(*m, pb) < length;
+        };
+        std::optional<Eigen::VectorXd> m;
+        for (int attempt = 0; attempt < 3 && !nearer(m); ++attempt) {
+          if (++splits > kMaxSplits) return false;
+          m = attempt == 0 ? tangentStep(pb, pa) : attempt == 1 ? tangentStep(pa, pb) : boundaryMiddle(pa, pb);
+        }
+        if (!nearer(m)) return false;
+        const int im = roadmap_.addNode(*m);
+        ++added;
+        return link(pa, ia, *m, im, depth - 1) && link(*m, im, pb, ib, depth - 1);
+      };
+  const Eigen::VectorXd b = roadmap_.node(b_node);  // a copy: link adds nodes, the roadmap reallocates
+  link(a, a_node, b, b_node, kMaxDepth);
+  return added;
+}
+
+bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, double widen,
+                         cspace::Rng& rng, cspace::Rng& tree_rng, const Termination& stop, std::string& why) {
+  // Frontier of a component: its node closest to a node outside it. Random configurations around the
+  // segment between the two are guided down to the decision boundaries (thesis ch. 3.5).
+  const Eigen::VectorXd& scale = context_.space.metricScale();
+  std::vector<Eigen::VectorXd> starts;
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int search = std::min(nn_->size(), 4 * options_.k + 1);
+  struct Frontier {
+    int a, b;        // a node of with_query in the component, b a node of roadmap_ outside it
+    double gap;      // their distance
+    bool alone;      // a is an endpoint without edges
+  };
+  std::vector<Frontier> frontiers;
+  for (int endpoint : {start_node, goal_node}) {
+    Frontier f{-1, -1, std::numeric_limits<double>::infinity(), false};
+    for (int i = 0; i < with_query.numNodes(); ++i) {
+      if (!with_query.connected(endpoint, i)) continue;
+      for (int j : nn_->nearest(with_query.node(i), search)) {
+        if (with_query.connected(endpoint, j)) continue;
+        const double d = context_.space.distance(with_query.node(i), roadmap_.node(j));
+        if (d < f.gap) f = {i, j, d, i == endpoint};
+        break;
+      }
+    }
+    if (f.a >= 0) frontiers.push_back(f);
+  }
+  // The closest pair between the start's and the goal's components: the nearest outside nodes may
+  // lead into dead ends while the two grow along one passage towards each other.
+  Frontier between{-1, -1, std::numeric_limits<double>::infinity(), false};
+  const int old_n = roadmap_.numNodes();
+  int start_root = -1;  // a roadmap node in the start's component
+  std::vector<int> goal_side;
+  std::vector<Eigen::VectorXd> goal_points;
+  for (int j = 0; j < old_n; ++j) {
+    if (start_root < 0 && with_query.connected(start_node, j)) start_root = j;
+    if (with_query.connected(goal_node, j)) goal_side.push_back(j), goal_points.push_back(roadmap_.node(j));
+  }
+  if (!goal_side.empty()) {
+    const NearestNeighbors goal_nn(goal_points, scale);
+    for (int i = 0; i < with_query.numNodes(); ++i) {
+      if (!with_query.connected(start_node, i)) continue;
+      const int j = goal_side[goal_nn.nearest(with_query.node(i), 1).front()];
+      if (const double d = context_.space.distance(with_query.node(i), roadmap_.node(j)); d < between.gap)
+        between = {i, j, d, false};
+    }
+  }
+  if (between.a >= 0) frontiers.push_back(between);
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const Frontier& f : frontiers) {
+    narrowest = std::min(narrowest, f.gap);
+    const Eigen::VectorXd a = with_query.node(f.a), b = roadmap_.node(f.b);
+    // Local to the disconnection (the pair is its narrowest point), wider after rounds without
+    // progress. An endpoint with no edge sits in a passage too thin for the roadmap's nodes to see:
+    // its samples are drawn around it instead, narrower after each round without progress.
+    const double spread = f.alone ? 0.5 * f.gap / widen : 0.5 * f.gap * widen;
+    for (int s = 0; s < options_.repair_samples / 2; ++s) {
+      Eigen::VectorXd q = f.alone ? a : Eigen::VectorXd(a + unit(rng) * (b - a));
+      for (int d = 0; d < q.size(); ++d) q[d] += spread * normal(rng) / scale[d];
+      context_.space.clamp(q);
+      starts.push_back(q);
+    }
+  }
+  if (starts.empty()) {
+    why = "no node outside the start's and goal's components to guide samples towards";
+    return false;
+  }
+  int added = 0;
+  for (const Frontier& f : frontiers) added += bridge(with_query.node(f.a), f.a < old_n ? f.a : -1, f.b);
+  // Milestones as close as a quarter of the disconnection: a passage narrower than the usual
+  // duplicate radius needs them.
+  added += addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true,
+                         std::min(options_.duplicate_radius, 0.25 * narrowest));
+  const int guided_end = roadmap_.numNodes();
+  if (added > 0) {
+    nn_.emplace(roadmap_.nodes(), scale);
+    connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
+  }
+  // Where the guided nodes did not join the two, trees grown from both (planners/tree_connect.hpp).
+  if (options_.repair_trees && start_root >= 0 && !goal_side.empty() && !stop() &&
+      !roadmap_.connected(start_root, goal_side.front())) {
+    std::vector<int> start_tree, goal_tree;
+    for (int j = 0; j < guided_end; ++j) {
+      if (roadmap_.connected(j, start_root)) start_tree.push_back(j);
+      if (roadmap_.connected(j, goal_side.front())) goal_tree.push_back(j);
+    }
+    const TreeConnectResult trees = connectByTrees(roadmap_, start_tree, goal_tree, context_, options_.tree_range,
+                                                   options_.repair_samples, tree_rng, stop);
+    grown_by_trees_.resize(guided_end, false);
+    grown_by_trees_.resize(roadmap_.numNodes(), true);
+    if (trees.added > 0) {
+      added += trees.added;
+      nn_.emplace(roadmap_.nodes(), scale);
+      connectMilestones(roadmap_, *nn_, context_, options_.k, guided_end, stop);
+    }
+  }
+  if (added == 0) {
+    why = "the last round's " + std::to_string(starts.size()) + " guided samples gave no new free milestone";
+    return true;  // another round draws new samples
+  }
+  why.clear();
+  return true;
+}
+
+}  // namespace svmp::planners
