@@ -3,30 +3,68 @@
 #include <algorithm>
 #include <set>
 
-#include "planners/nearest_neighbors.hpp"
+#include <nanoflann.hpp>
 
 namespace svmp::planners {
 
+namespace {
+
+struct ColumnCloud {  // nanoflann adaptor over the columns of a matrix
+  const Eigen::MatrixXd* points;
+  size_t kdtree_get_point_count() const { return static_cast<size_t>(points->cols()); }
+  double kdtree_get_pt(size_t i, size_t k) const {
+    return (*points)(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i));
+  }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, ColumnCloud>, ColumnCloud,
+                                                   -1, size_t>;
+
+// Radius-search result set that only notes the other labels met (each once per query).
+struct OtherLabels {
+  double radius;  // squared
+  const std::vector<int>& dense;
+  int own;
+  std::vector<long>& stamp;
+  long query;
+  std::vector<int>& met;
+  size_t size() const { return 0; }
+  bool full() const { return true; }
+  double worstDist() const { return radius; }
+  bool addPoint(double, size_t j) {
+    const int label = dense[j];
+    if (label != own && stamp[label] != query) stamp[label] = query, met.push_back(label);
+    return true;
+  }
+};
+
+}  // namespace
+
 std::map<int, int> colourClasses(const Eigen::MatrixXd& points, const std::vector<int>& labels,
-                                 const Eigen::VectorXd& scale, double distance, int neighbours) {
+                                 const Eigen::VectorXd& scale, double distance) {
   std::map<int, std::set<int>> adjacent;
   for (int label : labels) adjacent[label];
-  std::vector<Eigen::VectorXd> columns(points.cols());
-  for (Eigen::Index i = 0; i < points.cols(); ++i) columns[i] = points.col(i);
-  const NearestNeighbors nn(columns, scale);
-  const double d2 = distance * distance;
-  auto far = [&](Eigen::Index i, int j) { return (points.col(j) - points.col(i)).cwiseProduct(scale).squaredNorm() >= d2; };
-  for (Eigen::Index i = 0; i < points.cols(); ++i) {
-    // Every sample within `distance`: widen the k-nearest query until its farthest is beyond it.
-    std::vector<int> near;
-    for (int k = neighbours;; k *= 4) {
-      near = nn.nearest(points.col(i), k);
-      if (static_cast<int>(near.size()) < k || far(i, near.back())) break;
-    }
-    for (int j : near) {
-      if (labels[j] == labels[i] || far(i, j)) continue;
-      adjacent[labels[i]].insert(labels[j]);
-      adjacent[labels[j]].insert(labels[i]);
+  std::vector<int> label_of;  // dense index -> label
+  std::map<int, int> index_of;
+  for (const auto& [label, none] : adjacent) index_of[label] = static_cast<int>(label_of.size()), label_of.push_back(label);
+  std::vector<int> dense(labels.size());
+  for (size_t i = 0; i < labels.size(); ++i) dense[i] = index_of[labels[i]];
+  const Eigen::MatrixXd scaled = scale.asDiagonal() * points;
+  const ColumnCloud cloud{&scaled};
+  const KdTree tree(static_cast<int>(scaled.rows()), cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  std::vector<long> stamp(label_of.size(), -1);
+  std::vector<int> met;
+  for (Eigen::Index i = 0; i < scaled.cols(); ++i) {
+    met.clear();
+    OtherLabels found{distance * distance, dense, dense[static_cast<size_t>(i)], stamp, static_cast<long>(i), met};
+    tree.findNeighbors(found, scaled.col(i).data(), nanoflann::SearchParams(32, 0.0f, false));
+    const int own = labels[static_cast<size_t>(i)];
+    for (int other : met) {
+      adjacent[own].insert(label_of[static_cast<size_t>(other)]);
+      adjacent[label_of[static_cast<size_t>(other)]].insert(own);
     }
   }
   std::vector<int> order;

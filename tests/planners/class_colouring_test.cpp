@@ -2,7 +2,9 @@
 // distant ones share, a chain alternates, and the colouring is proper on random layouts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <set>
 
 #include "planners/class_colouring.hpp"
 
@@ -43,7 +45,7 @@ TEST(ClassColouring, RandomLayoutsAreProperlyColoured) {
   std::vector<int> labels;
   for (int k = 0; k < 60; ++k) addSquare(u(rng), u(rng), k + 1, points, labels);
   const double d = 0.5;
-  const auto colour = colourClasses(points, labels, Eigen::Vector2d(1, 2), d, 16);
+  const auto colour = colourClasses(points, labels, Eigen::Vector2d(1, 2), d);
   // Brute force: any two samples of different classes within d (weighted) must differ in colour.
   const Eigen::Vector2d scale(1, 2);
   int colours = 0;
@@ -55,6 +57,28 @@ TEST(ClassColouring, RandomLayoutsAreProperlyColoured) {
       }
   }
   EXPECT_LT(colours, 10);  // 60 classes, few colours
+
+  // The same greedy colouring on the brute-force adjacency gives the same colours: the k-d tree's
+  // radius searches neither miss nor invent a close pair.
+  std::map<int, std::set<int>> adjacent;
+  for (int label : labels) adjacent[label];
+  for (Eigen::Index i = 0; i < points.cols(); ++i)
+    for (Eigen::Index j = 0; j < points.cols(); ++j)
+      if (labels[i] != labels[j] && (points.col(i) - points.col(j)).cwiseProduct(scale).squaredNorm() < d * d)
+        adjacent[labels[i]].insert(labels[j]);
+  std::vector<int> order;
+  for (const auto& [label, next] : adjacent) order.push_back(label);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return adjacent[a].size() > adjacent[b].size(); });
+  std::map<int, int> expected;
+  for (int label : order) {
+    std::set<int> taken;
+    for (int other : adjacent[label])
+      if (expected.count(other)) taken.insert(expected[other]);
+    int c = 1;
+    while (taken.count(c)) ++c;
+    expected[label] = c;
+  }
+  EXPECT_EQ(colour, expected);
 }
 
 }  // namespace
