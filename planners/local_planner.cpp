@@ -127,9 +127,11 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, const Termination& 
     const Eigen::VectorXd q_next = next.cwiseQuotient(scale);
     if (const int hit = context_.checker.check(q_next);
         hit != cspace::kFree || !context_.validator.isValid(q_prev, q_next)) {
-      result.message = hit != cspace::kFree
-                           ? "a descent step ended " + cspace::describeHit(context_.checker.environment(), hit)
-                           : "a descent step crossed an obstacle between two free configurations";
+      std::ostringstream where;
+      where << (hit != cspace::kFree ? "a descent step ended " + cspace::describeHit(context_.checker.environment(), hit)
+                                     : std::string("a descent step crossed an obstacle between two free configurations"))
+            << " at [" << q_next.transpose() << "], F = " << f;
+      result.message = where.str();
       return PlanStatus::kFailed;
     }
     x = next;
