@@ -1,7 +1,8 @@
 #pragma once
 // Obstacle sampling of SVMP, thesis ch. 3.1 (Algorithm 1, read as the text describes it): one RRT-like
 // tree per C-obstacle region, rooted at a configuration that hits that obstacle (given in the scenario
-// or found by uniform sampling), grown towards uniform random configurations by a fixed step in the
+// or found by uniform sampling: one shared stream of draws serves every obstacle, since a check names
+// the obstacle a draw hits), grown towards uniform random configurations by a fixed step in the
 // weighted metric. q_new joins the tree when it hits the same obstacle; otherwise the node it grew from,
 // q_expansion, is marked a boundary sample and q_new is dropped. Each tree stops at N nodes (or when it fills its C-obstacle: max_idle_factor).
 // Surface refinement (on by default; the thesis' own future direction, ch. 3.5: "sampling methods that

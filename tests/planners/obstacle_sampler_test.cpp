@@ -143,6 +143,31 @@ TEST(ObstacleSampler, RootThatMissesItsObstacleIsReportedNotUsed) {
   for (int label : s.labels) EXPECT_NE(label, 3);
 }
 
+// 64 boxes of side 0.04 (0.16% of the space each) and one box inside the first: a root search per
+// obstacle draws about 625 uniform configurations for each (40k checks); the shared search names
+// the box each draw hits, about 625 x H(64) = 3k draws for all. The inner box is never the lowest id
+// a draw hits, so it searches on its own (about 2.5k draws) and still gets its root.
+TEST(ObstacleSampler, RootsOfManySmallObstaclesComeFromOneSharedSearch) {
+  std::string yaml = "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\nobstacles:\n";
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j)
+      yaml += "  - {shape: box, size: [0.04, 0.04, 1], position: [" + std::to_string(0.0625 + 0.125 * i) + ", " +
+              std::to_string(0.0625 + 0.125 * j) + ", 0]}\n";
+  yaml += "  - {name: inner, shape: box, size: [0.02, 0.02, 1], position: [0.0625, 0.0625, 0]}\n"
+          "start: [0.01, 0.01]\ngoal: [0.99, 0.99]\nresolution: 0.01\n";
+  auto w = makeWorld(yaml);
+  planners::ObstacleSamplerOptions opt;
+  opt.samples_per_tree = 1;  // the root only: every check counted is a root search's
+  const std::uint64_t before = w->checker.collisionChecks();
+  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 27, 1);
+  const std::uint64_t checks = w->checker.collisionChecks() - before;
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  ASSERT_EQ(s.tree_sizes.size(), 65u);
+  for (int size : s.tree_sizes) EXPECT_EQ(size, 1);
+  for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i])) << i;
+  EXPECT_LT(checks, 12000u) << "roots searched obstacle by obstacle";
+}
+
 TEST(ObstacleSampler, SameSeedGivesSameSamplesWithOneAndTwoThreads) {
   auto w = makeWorld(kThreeObstacles);
   const auto opt = samplerOptions();
