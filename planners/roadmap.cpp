@@ -56,7 +56,7 @@ void Roadmap::removeEdge(int a, int b) {
   if (!drop(a, b)) return;
   drop(b, a);
   --num_edges_;
-  recomputeComponents();
+  stale_ = true;
 }
 
 int Roadmap::dropUnchecked() {
@@ -64,12 +64,13 @@ int Roadmap::dropUnchecked() {
   for (auto& list : adjacency_)
     dropped += static_cast<int>(std::erase_if(list, [](const Edge& e) { return !e.checked; }));
   num_edges_ -= dropped / 2;
-  recomputeComponents();
+  stale_ = true;
   return dropped / 2;
 }
 
 void Roadmap::recomputeComponents() {
   components_ = UnionFind(numNodes());
+  stale_ = false;
   for (int u = 0; u < numNodes(); ++u)
     for (const Edge& e : adjacency_[u])
       if (u < e.to) components_.unite(u, e.to);
@@ -106,6 +107,7 @@ void Roadmap::clear() {
   nodes_.clear();
   adjacency_.clear();
   components_.resize(0);
+  stale_ = false;
   num_edges_ = 0;
 }
 

@@ -39,7 +39,8 @@ class Roadmap {
   // checked = false adds a lazy edge (LazyPRM): assumed free until a query checks it.
   void addEdge(int a, int b, double cost, bool checked = true);
   bool hasEdge(int a, int b) const;
-  // Removes the edge a-b (both directions) and recomputes the components; no-op when absent.
+  // Removes the edge a-b (both directions); no-op when absent. The components are recomputed when
+  // next asked for (a lazy query removes edges one by one and needs them only when its search fails).
   void removeEdge(int a, int b);
   // Removes every unchecked edge; returns how many.
   int dropUnchecked();
@@ -54,8 +55,11 @@ class Roadmap {
   const Eigen::VectorXd& node(int i) const { return nodes_[i]; }
   const std::vector<Eigen::VectorXd>& nodes() const { return nodes_; }
   const std::vector<Edge>& neighbours(int i) const { return adjacency_[i]; }
-  UnionFind& components() { return components_; }
-  bool connected(int a, int b) { return components_.same(a, b); }
+  UnionFind& components() {
+    if (stale_) recomputeComponents();
+    return components_;
+  }
+  bool connected(int a, int b) { return components().same(a, b); }
 
   // Shortest path from `from` to `to` as node indices (empty when none). `heuristic(i)` must not
   // overestimate the remaining cost to `to` (the metric distance does not).
@@ -69,6 +73,7 @@ class Roadmap {
   std::vector<Eigen::VectorXd> nodes_;
   std::vector<std::vector<Edge>> adjacency_;
   UnionFind components_;
+  bool stale_ = false;  // an edge was removed since components_ was built
   int num_edges_ = 0;
 };
 

@@ -74,10 +74,14 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
     roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
   const Eigen::VectorXd goal = query.goal;
   const int shared = milestones ? milestones->numNodes() : 0;
-  while (roadmap.connected(out.start_node, out.goal_node)) {
+  // The components answer the first time; then the search itself tells when the removed edges
+  // disconnected the two (no path), without rebuilding the components after each removal.
+  if (!roadmap.connected(out.start_node, out.goal_node)) return out;
+  for (;;) {
     const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {
       return context.space.distance(roadmap.node(v), goal);
     });
+    if (nodes.empty()) break;
     // One pass over the path's edges not yet `done`: each that passes `test` is marked, the first
     // that fails is removed (from the shared roadmap too) and ends the pass.
     const auto pass = [&](auto done, auto test, auto mark) {
