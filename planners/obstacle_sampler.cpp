@@ -1,5 +1,6 @@
 #include "planners/obstacle_sampler.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <optional>
@@ -113,8 +114,8 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
   Eigen::VectorXd q_rand(space.dim());
   const long max_iterations = static_cast<long>(options.max_iterations_factor) * n;
   long iteration = 0, idle = 0;
-  while (static_cast<int>(tree.nodes.size()) < n && iteration++ < max_iterations &&
-         idle++ < static_cast<long>(options.max_idle_factor) * n) {
+  const auto idle_limit = [&] { return options.max_idle_factor * std::max<long>(20, std::ssize(tree.nodes)); };
+  while (static_cast<int>(tree.nodes.size()) < n && iteration++ < max_iterations && idle++ < idle_limit()) {
     if (stopRequested(options, iteration)) {
       tree.stopped = true;
       return tree;

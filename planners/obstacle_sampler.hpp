@@ -27,10 +27,14 @@ struct ObstacleSamplerOptions {
   int samples_per_tree = 200;    // N
   int max_root_attempts = 200000;  // uniform draws when searching for a root
   int max_iterations_factor = 50;  // a tree gives up after factor * N expansions
-  // ... or after factor * N expansions in a row that add no node and mark no boundary: the tree fills
-  // its C-obstacle (a small obstacle holds fewer than N samples a step apart), and growing on only
-  // spends collision checks (forest_200: 2.3M checks for 40k samples). Halving the step instead gave
-  // the same success at 1.5-18x the time (more samples to train on; docs/reproduction.md).
+  // ... or when it stalls: factor * max(20, nodes) expansions in a row that add no node and mark no
+  // boundary. A tree that fills its C-obstacle (a small obstacle holds fewer than N samples a step
+  // apart) grows on only by spending collision checks (forest_200: 2.3M checks for 40k samples);
+  // halving the step instead gave the same success at 1.5-18x the time. The limit follows the
+  // tree's size, not N: a small tree also stalls where few uniform targets fall near its obstacle,
+  // and its interior nodes are not what the SVMs train on (interior_fraction). Against 2N idle
+  // expansions: the same success on the 33 files, forest_200 43.6 -> 23.6 ms, panda_shelf 264 ->
+  // 184 ms (docs/reproduction.md).
   int max_idle_factor = 2;
   bool include_virtual = false;  // also sample virtual (guide) obstacles
   // Also grow a tree in the self-collision region (label kSelfCollisionHit): the thesis counts self
