@@ -23,7 +23,7 @@ struct ColumnCloud {  // nanoflann adaptor over the columns of a matrix
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, ColumnCloud>, ColumnCloud,
                                                    -1, size_t>;
 
-// Radius-search result set that only notes the other labels met (each once per query).
+// Radius-search result set that only notes the other labels met (each once per stamp).
 struct OtherLabels {
   double radius;  // squared
   const std::vector<int>& dense;
@@ -59,7 +59,10 @@ std::map<int, int> colourClasses(const Eigen::MatrixXd& points, const std::vecto
   std::vector<int> met;
   for (Eigen::Index i = 0; i < scaled.cols(); ++i) {
     met.clear();
-    OtherLabels found{distance * distance, dense, dense[static_cast<size_t>(i)], stamp, static_cast<long>(i), met};
+    // Stamped by the own label: samples come grouped by obstacle, so each pair is noted once per label
+    // (the sets keep it correct in any order).
+    const int own_dense = dense[static_cast<size_t>(i)];
+    OtherLabels found{distance * distance, dense, own_dense, stamp, own_dense, met};
     tree.findNeighbors(found, scaled.col(i).data(), nanoflann::SearchParams(32, 0.0f, false));
     const int own = labels[static_cast<size_t>(i)];
     for (int other : met) {
