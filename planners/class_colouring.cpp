@@ -23,20 +23,20 @@ struct ColumnCloud {  // nanoflann adaptor over the columns of a matrix
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, ColumnCloud>, ColumnCloud,
                                                    -1, size_t>;
 
-// Radius-search result set that only notes the other labels met (each once per stamp).
+// Radius-search result set that only notes the other labels met, each once per own label (stamp[l]:
+// the own label that last met l).
 struct OtherLabels {
   double radius;  // squared
   const std::vector<int>& dense;
   int own;
-  std::vector<long>& stamp;
-  long query;
+  std::vector<int>& stamp;
   std::vector<int>& met;
   size_t size() const { return 0; }
   bool full() const { return true; }
   double worstDist() const { return radius; }
   bool addPoint(double, size_t j) {
     const int label = dense[j];
-    if (label != own && stamp[label] != query) stamp[label] = query, met.push_back(label);
+    if (label != own && stamp[label] != own) stamp[label] = own, met.push_back(label);
     return true;
   }
 };
@@ -55,14 +55,13 @@ std::map<int, int> colourClasses(const Eigen::MatrixXd& points, const std::vecto
   const Eigen::MatrixXd scaled = scale.asDiagonal() * points;
   const ColumnCloud cloud{&scaled};
   const KdTree tree(static_cast<int>(scaled.rows()), cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  std::vector<long> stamp(label_of.size(), -1);
+  std::vector<int> stamp(label_of.size(), -1);
   std::vector<int> met;
   for (Eigen::Index i = 0; i < scaled.cols(); ++i) {
     met.clear();
-    // Stamped by the own label: samples come grouped by obstacle, so each pair is noted once per label
-    // (the sets keep it correct in any order).
-    const int own_dense = dense[static_cast<size_t>(i)];
-    OtherLabels found{distance * distance, dense, own_dense, stamp, own_dense, met};
+    // Samples come grouped by obstacle, so each pair is noted about once per label (the sets keep it
+    // correct in any order).
+    OtherLabels found{distance * distance, dense, dense[static_cast<size_t>(i)], stamp, met};
     tree.findNeighbors(found, scaled.col(i).data(), nanoflann::SearchParams(32, 0.0f, false));
     const int own = labels[static_cast<size_t>(i)];
     for (int other : met) {
