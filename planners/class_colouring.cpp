@@ -5,21 +5,13 @@
 
 #include <nanoflann.hpp>
 
+#include "svm/column_cloud.hpp"
+
 namespace svmp::planners {
 
 namespace {
 
-struct ColumnCloud {  // nanoflann adaptor over the columns of a matrix
-  const Eigen::MatrixXd* points;
-  size_t kdtree_get_point_count() const { return static_cast<size_t>(points->cols()); }
-  double kdtree_get_pt(size_t i, size_t k) const {
-    return (*points)(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i));
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
+using svm::ColumnCloud;
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, ColumnCloud>, ColumnCloud,
                                                    -1, size_t>;
 

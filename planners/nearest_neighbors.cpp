@@ -2,16 +2,11 @@
 
 #include <nanoflann.hpp>
 
+#include "svm/column_cloud.hpp"
+
 namespace svmp::planners {
 
-// nanoflann dataset adaptor over the columns of a column-major matrix.
-struct ColumnCloud {
-  const Eigen::MatrixXd* points;
-  size_t kdtree_get_point_count() const { return static_cast<size_t>(points->cols()); }
-  double kdtree_get_pt(size_t i, size_t d) const { return (*points)(d, i); }
-  template <class Bbox>
-  bool kdtree_get_bbox(Bbox&) const { return false; }
-};
+using svm::ColumnCloud;
 
 struct NearestNeighbors::Tree {
   using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Adaptor<double, ColumnCloud>,

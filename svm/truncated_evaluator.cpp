@@ -1,5 +1,6 @@
 #include "svm/truncated_evaluator.hpp"
 
+#include "svm/column_cloud.hpp"
 #include "svm/simd_loops.hpp"
 
 #include <algorithm>
@@ -12,17 +13,6 @@
 namespace svmp::svm {
 
 namespace {
-
-// nanoflann dataset adaptor over the columns of a d x m matrix.
-struct ColumnCloud {
-  const Eigen::MatrixXd* points;
-  size_t kdtree_get_point_count() const { return static_cast<size_t>(points->cols()); }
-  double kdtree_get_pt(size_t i, size_t k) const { return (*points)(k, i); }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
 
 using KdTree =
     nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, ColumnCloud>,
