@@ -4,8 +4,9 @@
 // Chen, Ladd and Kavraki, IEEE T-RO 2005). Each uniform sample extends one tree by one step of
 // `range` from its nearest node; the other tree then connects towards the new node step by step
 // until it reaches it (the components are joined) or is blocked; the trees swap roles. SVMP's repair
-// (planners/svmp_planner.cpp) runs it in each round beside the SVM-guided samples: where the
-// decision boundaries do not lead through a passage, the trees still explore it.
+// (planners/svmp_repair.cpp) runs it in a round whose SVM-guided nodes did not join the start's and
+// the goal's components: where the decision boundaries do not lead through a passage, the trees
+// still explore it.
 // Every motion is checked by the context's validator; new nodes and edges join the roadmap checked
 // (the query proves the edges its path uses).
 #include <vector>
