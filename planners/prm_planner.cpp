@@ -33,6 +33,7 @@ PrmPlanner::PrmPlanner(const PlanningContext& context, PrmOptions options)
 void PrmPlanner::clear() {
   forgetBuild();
   roadmap_.clear();
+  with_query_.clear();
   nn_.reset();
 }
 
@@ -73,8 +74,8 @@ void PrmPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanR
 
 void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termination&, PlanResult& result) {
   const auto t0 = Clock::now();
-  Roadmap with_query = roadmap_;
-  QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_);
+  with_query_ = roadmap_;
+  QueryOutcome outcome = queryRoadmap(with_query_, *nn_, context_, query, options_.k, &roadmap_);
   result.times.query_ms += msSince(t0);
   result.path = std::move(outcome.path);
   result.certified = outcome.certified;

@@ -39,6 +39,7 @@ class PrmPlanner final : public Planner {
  private:
   PrmOptions options_;
   Roadmap roadmap_;
+  Roadmap with_query_;  // roadmap_ plus a query's endpoints; assigned anew per query, keeping its allocations
   std::optional<NearestNeighbors> nn_;
 };
 

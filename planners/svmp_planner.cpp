@@ -100,6 +100,7 @@ void SvmpPlanner::clear() {
   samples_ = {};
   risk_.reset();
   roadmap_.clear();
+  with_query_.clear();
   grown_by_trees_.clear();
   nn_.reset();
 }
@@ -393,7 +394,8 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   int spent = 0, last_size = -1;
   double widen = 1.0;
   for (int round = 0;; ++round) {
-    Roadmap with_query = roadmap_;
+    Roadmap& with_query = with_query_;
+    with_query = roadmap_;
     QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_);
     result.times.certify_ms += outcome.certify_ms;
     if (!outcome.path.empty()) {

@@ -145,6 +145,7 @@ class SvmpPlanner final : public Planner {
   planners::ObstacleSamples samples_;
   std::optional<RiskFunction> risk_;
   Roadmap roadmap_;
+  Roadmap with_query_;  // roadmap_ plus a query's endpoints; assigned anew per round, keeping its allocations
   std::optional<NearestNeighbors> nn_;
   std::vector<bool> grown_by_trees_;  // roadmap_ nodes the repair's trees added (by index; shorter: no)
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
