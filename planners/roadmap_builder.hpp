@@ -26,8 +26,8 @@ struct QueryOutcome {
   int lazy_checks = 0;                // unchecked edges the search made it check
 };
 
-// Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean),
-// connects each to its k nearest milestones (checked edges) and searches the path. Each unchecked edge
+// Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean); when
+// the straight motion between them is free and proven, that is the path. Otherwise connects each to its k nearest milestones (checked edges) and searches the path. Each unchecked edge
 // of the path found is checked, and with context.certifier each edge is proven free (once: checked
 // and proven edges are marked); an edge that fails is removed and the search runs again, until a path
 // holds or start and goal are disconnected. `milestones`, the roadmap `roadmap` was copied from, gets
