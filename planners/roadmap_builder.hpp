@@ -14,9 +14,11 @@ namespace svmp::planners {
 // checked here; each node gets unchecked edges to its k nearest nodes and to nodes of other
 // components among its 3k + 1 nearest (up to 2k edges), and queries check only the edges their
 // paths use. A single query then checks tens to hundreds of motions (50-400 on Figs 4.4-4.10) instead
-// of thousands.
+// of thousands. Eager with a certifier and `certify_ms`: each edge is proven too (marked certified,
+// the proofs' time added to *certify_ms), so the components are what a query can prove.
 bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first = 0, const Termination& stop = {}, bool lazy = false);
+                       int k, int first = 0, const Termination& stop = {}, bool lazy = false,
+                       double* certify_ms = nullptr);
 
 struct QueryOutcome {
   std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected

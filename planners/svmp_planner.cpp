@@ -433,7 +433,8 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
     const bool repaired =
         budget && !stop() &&
-        repair(with_query, outcome.start_node, outcome.goal_node, widen, rng, tree_rng, stop, why);
+        repair(with_query, outcome.start_node, outcome.goal_node, widen, rng, tree_rng, stop, why,
+               result.times.certify_ms);
     if (stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached after " + std::to_string(round) + " repair rounds";

@@ -72,7 +72,8 @@ int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
 }
 
 bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, double widen,
-                         cspace::Rng& rng, cspace::Rng& tree_rng, const Termination& stop, std::string& why) {
+                         cspace::Rng& rng, cspace::Rng& tree_rng, const Termination& stop, std::string& why,
+                         double& certify_ms) {
   // Frontier of a component: its node closest to a node outside it. Random configurations around the
   // segment between the two are guided down to the decision boundaries (thesis ch. 3.5).
   const Eigen::VectorXd& scale = context_.space.metricScale();
@@ -148,13 +149,18 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   const int guided_end = roadmap_.numNodes();
   if (added > 0) {
     nn_.emplace(roadmap_.nodes(), scale);
-    connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
+    connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop, false, &certify_ms);
   }
   // Where the guided nodes did not join the two, trees grown from both (planners/tree_connect.hpp).
-  if (options_.repair_trees && start_root >= 0 && !goal_side.empty() && !stop() &&
-      !roadmap_.connected(start_root, goal_side.front())) {
+  // An endpoint whose every connection was blocked roots its own tree: it joins the roadmap (guided
+  // samples around it alone took fastron_panda up to 7 rounds).
+  if (options_.repair_trees && !stop()) {
+    if (start_root < 0) start_root = roadmap_.addNode(with_query.node(start_node));
+    if (goal_side.empty()) goal_side.push_back(roadmap_.addNode(with_query.node(goal_node)));
+  }
+  if (options_.repair_trees && !stop() && !roadmap_.connected(start_root, goal_side.front())) {
     std::vector<int> start_tree, goal_tree;
-    for (int j = 0; j < guided_end; ++j) {
+    for (int j = 0; j < roadmap_.numNodes(); ++j) {
       if (roadmap_.connected(j, start_root)) start_tree.push_back(j);
       if (roadmap_.connected(j, goal_side.front())) goal_tree.push_back(j);
     }
@@ -162,10 +168,10 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
                                                    options_.repair_samples, tree_rng, stop);
     grown_by_trees_.resize(guided_end, false);
     grown_by_trees_.resize(roadmap_.numNodes(), true);
-    if (trees.added > 0) {
-      added += trees.added;
+    added += trees.added;
+    if (roadmap_.numNodes() > guided_end) {  // the trees' nodes, and endpoints that joined
       nn_.emplace(roadmap_.nodes(), scale);
-      connectMilestones(roadmap_, *nn_, context_, options_.k, guided_end, stop);
+      connectMilestones(roadmap_, *nn_, context_, options_.k, guided_end, stop, false, &certify_ms);
     }
   }
   if (added == 0) {
