@@ -23,13 +23,13 @@ bool connect(Roadmap& roadmap, const PlanningContext& context, int a, int b, dou
 
 // Tries `node` against up to k of its `search` nearest indexed nodes that lie in other components.
 void connectToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                      int node, int k, int search, double* certify_ms) {
+                      int node, int k, int search) {
   int tried = 0;
   for (int j : nn.nearest(roadmap.node(node), search)) {
     if (tried >= k) break;
     if (j == node || roadmap.connected(node, j)) continue;
     ++tried;
-    connect(roadmap, context, node, j, certify_ms);
+    connect(roadmap, context, node, j, nullptr);
   }
 }
 
@@ -65,47 +65,25 @@ void connectEndpoint(Roadmap& roadmap, const NearestNeighbors& nn, const Plannin
 }  // namespace
 
 bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first, const Termination& stop, bool lazy, double* certify_ms) {
+                       int k, int first, const Termination& stop, bool lazy) {
   // Ask the tree for more than k so that k remain after dropping same-component neighbours.
   const int search = std::min(nn.size(), 3 * k + 1);
   for (int i = first; i < roadmap.numNodes(); ++i) {
     if (stop()) return false;
-    lazy ? linkToNearest(roadmap, nn, context, i, k, search) : connectToNearest(roadmap, nn, context, i, k, search, certify_ms);
+    lazy ? linkToNearest(roadmap, nn, context, i, k, search) : connectToNearest(roadmap, nn, context, i, k, search);
   }
   return true;
 }
 
-QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                          const cspace::Query& query, int k, Roadmap* milestones) {
-  QueryOutcome out;
-  out.start_node = roadmap.addNode(query.start);
-  out.goal_node = roadmap.addNode(query.goal);
-  // The straight motion first: when it is free and proven it is the shortest path there is, and the
-  // endpoints' connections to the roadmap (long motions on an arm: about 300 checks each on
-  // panda_shelf) are not needed.
-  const bool straight = context.validator.isValid(query.start, query.goal);
-  if (straight) {
-    const auto t0 = Clock::now();
-    const bool proven = !context.certifier || context.certifier->isValid(query.start, query.goal);
-    out.certify_ms += context.certifier ? msSince(t0) : 0.0;
-    if (proven) {
-      roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
-      out.path = {query.start, query.goal};
-      out.certified = context.certifier != nullptr;
-      return out;
-    }
-  }
-  for (int endpoint : {out.start_node, out.goal_node}) connectEndpoint(roadmap, nn, context, endpoint, k, out.certify_ms);
-  const Eigen::VectorXd goal = query.goal;
+std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningContext& context, Roadmap* milestones,
+                            int& checks, double& certify_ms) {
   const int shared = milestones ? milestones->numNodes() : 0;
-  // The components answer the first time; then the search itself tells when the removed edges
-  // disconnected the two (no path), without rebuilding the components after each removal.
-  if (!roadmap.connected(out.start_node, out.goal_node)) return out;
+  const Eigen::VectorXd target = roadmap.node(to);
   for (;;) {
-    const auto nodes = roadmap.shortestPath(out.start_node, out.goal_node, [&](int v) {
-      return context.space.distance(roadmap.node(v), goal);
+    const auto nodes = roadmap.shortestPath(from, to, [&](int v) {
+      return context.space.distance(roadmap.node(v), target);
     });
-    if (nodes.empty()) break;
+    if (nodes.empty()) return nodes;
     // One pass over the path's edges not yet `done`: each that passes `test` is marked, each that
     // fails is removed (from the shared roadmap too). `whole`: the pass goes on after a failure.
     const auto pass = [&](auto done, auto test, auto mark, bool whole) {
@@ -130,23 +108,50 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
     // covers the whole path: a sampled check of an edge costs a few collision checks, far less than
     // the search that each failure would otherwise cost (forest_200: query 9.1 -> 3.9 ms).
     const auto check = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-      ++out.lazy_checks;
+      ++checks;
       return context.validator.isValid(a, b);
     };
     const auto certify = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       const auto t0 = Clock::now();
       const bool free = context.certifier->isValid(a, b);
-      out.certify_ms += msSince(t0);
+      certify_ms += msSince(t0);
       return free;
     };
     const bool disproved =
         !pass(&Roadmap::isChecked, check, &Roadmap::markChecked, true) ||
         (context.certifier && !pass(&Roadmap::isCertified, certify, &Roadmap::markCertified, false));
-    if (disproved) continue;
-    for (int v : nodes) out.path.push_back(roadmap.node(v));
-    out.certified = context.certifier != nullptr;
-    break;
+    if (!disproved) return nodes;
   }
+}
+
+QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
+                          const cspace::Query& query, int k, Roadmap* milestones) {
+  QueryOutcome out;
+  out.start_node = roadmap.addNode(query.start);
+  out.goal_node = roadmap.addNode(query.goal);
+  // The straight motion first: when it is free and proven it is the shortest path there is, and the
+  // endpoints' connections to the roadmap (long motions on an arm: about 300 checks each on
+  // panda_shelf) are not needed.
+  const bool straight = context.validator.isValid(query.start, query.goal);
+  if (straight) {
+    const auto t0 = Clock::now();
+    const bool proven = !context.certifier || context.certifier->isValid(query.start, query.goal);
+    out.certify_ms += context.certifier ? msSince(t0) : 0.0;
+    if (proven) {
+      roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
+      out.path = {query.start, query.goal};
+      out.certified = context.certifier != nullptr;
+      return out;
+    }
+  }
+  for (int endpoint : {out.start_node, out.goal_node}) connectEndpoint(roadmap, nn, context, endpoint, k, out.certify_ms);
+  // The components answer the first time; then the search itself tells when the removed edges
+  // disconnected the two (no path), without rebuilding the components after each removal.
+  if (!roadmap.connected(out.start_node, out.goal_node)) return out;
+  const std::vector<int> nodes = provenPath(roadmap, out.start_node, out.goal_node, context, milestones,
+                                            out.lazy_checks, out.certify_ms);
+  for (int v : nodes) out.path.push_back(roadmap.node(v));
+  out.certified = !nodes.empty() && context.certifier != nullptr;
   return out;
 }
 

@@ -14,11 +14,9 @@ namespace svmp::planners {
 // checked here; each node gets unchecked edges to its k nearest nodes and to nodes of other
 // components among its 3k + 1 nearest (up to 2k edges), and queries check only the edges their
 // paths use. A single query then checks tens to hundreds of motions (50-400 on Figs 4.4-4.10) instead
-// of thousands. Eager with a certifier and `certify_ms`: each edge is proven too (marked certified,
-// the proofs' time added to *certify_ms), so the components are what a query can prove.
+// of thousands.
 bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                       int k, int first = 0, const Termination& stop = {}, bool lazy = false,
-                       double* certify_ms = nullptr);
+                       int k, int first = 0, const Termination& stop = {}, bool lazy = false);
 
 struct QueryOutcome {
   std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected
@@ -27,6 +25,13 @@ struct QueryOutcome {
   double certify_ms = 0;              // time spent proving edges
   int lazy_checks = 0;                // unchecked edges the search made it check
 };
+
+// The shortest path from `from` to `to` whose every edge is checked (unchecked edges are checked,
+// `checks` counting them) and, with context.certifier, proven (`certify_ms` adding the time); an edge
+// that fails is removed, also from `milestones` when both its nodes are among milestones' nodes, and
+// the search runs again. Empty when none is left.
+std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningContext& context, Roadmap* milestones,
+                            int& checks, double& certify_ms);
 
 // Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean); when
 // the straight motion between them is free and proven, that is the path. Otherwise connects each to its k nearest milestones (checked edges) and searches the path. Each unchecked edge

@@ -121,9 +121,7 @@ class SvmpPlanner final : public Planner {
                     const Termination& stop, bool keep_free_starts = false, double duplicate_radius = -1);
   // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
   // round added nothing. The trees draw from tree_rng, so the guided samples' draws do not depend on
-  // them. The round's new edges are proven as they are made (time added to certify_ms): an edge that
-  // passes the sampled check but not the proof would join components the query cannot, and trees
-  // would not grow where they are needed.
+  // them. Proofs it runs add their time to certify_ms.
   bool repair(Roadmap& with_query, int start_node, int goal_node, double widen, cspace::Rng& rng,
               cspace::Rng& tree_rng, const Termination& stop, std::string& why, double& certify_ms);
   // Links `a` (roadmap node a_node, or -1 for a query's endpoint) to node b_node along the decision

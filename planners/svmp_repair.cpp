@@ -149,18 +149,19 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   const int guided_end = roadmap_.numNodes();
   if (added > 0) {
     nn_.emplace(roadmap_.nodes(), scale);
-    connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop, false, &certify_ms);
+    connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
   }
   // Where the guided nodes did not join the two, trees grown from both (planners/tree_connect.hpp).
-  // An endpoint whose every connection was blocked roots its own tree: it joins the roadmap (guided
-  // samples around it alone took fastron_panda up to 7 rounds).
-  if (options_.repair_trees && !stop()) {
-    if (start_root < 0) start_root = roadmap_.addNode(with_query.node(start_node));
-    if (goal_side.empty()) goal_side.push_back(roadmap_.addNode(with_query.node(goal_node)));
-  }
-  if (options_.repair_trees && !stop() && !roadmap_.connected(start_root, goal_side.front())) {
+  // Joined only counts when a path between them holds its proofs: an edge that passes the sampled check
+  // but not the proof (fastron_panda: of length 4-5) would otherwise skip the trees round after round.
+  int checks = 0;
+  const auto joined = [&] {
+    return roadmap_.connected(start_root, goal_side.front()) &&
+           !provenPath(roadmap_, start_root, goal_side.front(), context_, nullptr, checks, certify_ms).empty();
+  };
+  if (options_.repair_trees && start_root >= 0 && !goal_side.empty() && !stop() && !joined()) {
     std::vector<int> start_tree, goal_tree;
-    for (int j = 0; j < roadmap_.numNodes(); ++j) {
+    for (int j = 0; j < guided_end; ++j) {
       if (roadmap_.connected(j, start_root)) start_tree.push_back(j);
       if (roadmap_.connected(j, goal_side.front())) goal_tree.push_back(j);
     }
@@ -168,10 +169,10 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
                                                    options_.repair_samples, tree_rng, stop);
     grown_by_trees_.resize(guided_end, false);
     grown_by_trees_.resize(roadmap_.numNodes(), true);
-    added += trees.added;
-    if (roadmap_.numNodes() > guided_end) {  // the trees' nodes, and endpoints that joined
+    if (trees.added > 0) {
+      added += trees.added;
       nn_.emplace(roadmap_.nodes(), scale);
-      connectMilestones(roadmap_, *nn_, context_, options_.k, guided_end, stop, false, &certify_ms);
+      connectMilestones(roadmap_, *nn_, context_, options_.k, guided_end, stop);
     }
   }
   if (added == 0) {
