@@ -49,8 +49,8 @@ void linkToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningC
 // A query's endpoint (not in the index): as connectToNearest over its 3k nearest, but while it has no
 // edge it keeps trying past k.
 // Each edge is proven when made (with a certifier): an endpoint joined by an edge that passes the
-// sampled check but not the proof would seem connected to a component it is not (fastron_panda:
-// repair rounds spent, each adding an endpoint edge of length 4-5 that the proof then refused).
+// sampled check but not the proof would seem to belong to a component it cannot reach, and the repair
+// would look for the disconnection in the wrong place.
 void connectEndpoint(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context, int node,
                      int k, double& certify_ms) {
   int tried = 0, edges = 0;
@@ -132,8 +132,7 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   // The straight motion first: when it is free and proven it is the shortest path there is, and the
   // endpoints' connections to the roadmap (long motions on an arm: about 300 checks each on
   // panda_shelf) are not needed.
-  const bool straight = context.validator.isValid(query.start, query.goal);
-  if (straight) {
+  if (context.validator.isValid(query.start, query.goal)) {
     const auto t0 = Clock::now();
     const bool proven = !context.certifier || context.certifier->isValid(query.start, query.goal);
     out.certify_ms += context.certifier ? msSince(t0) : 0.0;
@@ -144,7 +143,8 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
       return out;
     }
   }
-  for (int endpoint : {out.start_node, out.goal_node}) connectEndpoint(roadmap, nn, context, endpoint, k, out.certify_ms);
+  for (int endpoint : {out.start_node, out.goal_node})
+    connectEndpoint(roadmap, nn, context, endpoint, k, out.certify_ms);
   // The components answer the first time; then the search itself tells when the removed edges
   // disconnected the two (no path), without rebuilding the components after each removal.
   if (!roadmap.connected(out.start_node, out.goal_node)) return out;

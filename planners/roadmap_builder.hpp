@@ -34,11 +34,13 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
                             int& checks, double& certify_ms);
 
 // Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean); when
-// the straight motion between them is free and proven, that is the path. Otherwise connects each to its k nearest milestones (checked edges) and searches the path. Each unchecked edge
-// of the path found is checked, and with context.certifier each edge is proven free (once: checked
-// and proven edges are marked); an edge that fails is removed and the search runs again, until a path
-// holds or start and goal are disconnected. `milestones`, the roadmap `roadmap` was copied from, gets
-// the same marks and removals for edges between its nodes. `lazy_checks` counts the motions checked.
+// the straight motion between them is free and proven, that is the path. Otherwise connects each to
+// its k nearest milestones (checked edges, proven too with a certifier) and searches the path
+// (provenPath): each unchecked edge of the path found is checked, and with context.certifier each
+// edge is proven free (once: checked and proven edges are marked); an edge that fails is removed and
+// the search runs again, until a path holds or start and goal are disconnected. `milestones`, the
+// roadmap `roadmap` was copied from, gets the same marks and removals for edges between its nodes.
+// `lazy_checks` counts the motions checked.
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
                           const cspace::Query& query, int k, Roadmap* milestones = nullptr);
 

@@ -3,12 +3,10 @@
 // Fig. 2.6 scenario with a collision-free path, and a trap ahead of the start is a local minimum.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <random>
 #include <set>
-#include <sstream>
 
 #include "planners/hyperplane_labelling.hpp"
 #include "planners/ik_obstacle_sampler.hpp"
@@ -20,15 +18,7 @@ namespace {
 
 using test::makeWorld;
 using test::pathIsValid;
-
-std::string readScenario(const std::string& name) {
-  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + name;
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::readScenario;
 
 // Every obstacle's samples carry one label (the labelling is consistent per obstacle).
 ::testing::AssertionResult consistentPerObstacle(const std::vector<int>& regions, const Eigen::VectorXd& y) {

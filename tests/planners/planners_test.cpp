@@ -2,9 +2,7 @@
 // narrow passage that SVMP's boundary milestones are made for.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <regex>
-#include <sstream>
 
 #include "planners/path_simplifier.hpp"
 #include "planners/prm_planner.hpp"
@@ -435,11 +433,7 @@ TEST(TreeConnect, JoinsTwoComponentsThroughTheGapOnFreeEdges) {
 // Fig 4.4's seeds 4, 5 and 11 ended with the start's and the goal's components (1,300 and 500-1,100
 // nodes) unjoined after 20 SVM-guided repair rounds; the trees join them. Certified, densely free.
 TEST(TreeConnect, SvmpRepairSolvesFig44WhereGuidedRoundsAloneDidNot) {
-  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig4_4.yaml";
-  std::ifstream in(path);
-  std::stringstream yaml;
-  yaml << in.rdbuf();
-  auto w = makeWorld(yaml.str());
+  auto w = makeWorld(test::readScenario("thesis_fig4_4.yaml"));
   w->certify();
   for (std::uint64_t seed : {4, 5, 11}) {
     const PlanResult r = w->planner("svmp")->solve(w->query(), seed);

@@ -1,9 +1,6 @@
-// A roadmap query's endpoints (planners/roadmap_builder.cpp): the straight motion first, and endpoint
-// edges proven when made.
+// A roadmap query (planners/roadmap_builder.cpp): the straight motion first, endpoint edges proven when
+// made, provenPath; and SVMP's repair on fastron_panda's random queries.
 #include <gtest/gtest.h>
-
-#include <fstream>
-#include <sstream>
 
 #include "bench/experiments/experiment.hpp"
 #include "planners/roadmap_builder.hpp"
@@ -124,11 +121,7 @@ TEST(RoadmapQuery, ProvenPathRemovesEdgesTheProofRefusesAndGoesRound) {
 // solved and proven, the hard ones by repair rounds whose trees run when the components are joined
 // only through an edge the proof refuses.
 TEST(RoadmapQuery, SvmpAnswersFastronPandasRandomQueriesAllProven) {
-  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/fastron_panda.yaml";
-  std::ifstream in(path);
-  std::stringstream yaml;
-  yaml << in.rdbuf();
-  auto w = makeWorld(yaml.str());
+  auto w = makeWorld(test::readScenario("fastron_panda.yaml"));
   w->certify();
   auto svmp = w->planner("svmp");
   ASSERT_TRUE(svmp->build(1).solved());

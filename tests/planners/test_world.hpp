@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -41,6 +43,16 @@ struct World {
     return makePlanner(name, context, scenario.paramsFor(name));
   }
 };
+
+// The text of bench/scenarios/NAME (SVMP_SOURCE_DIR is set for every planners test).
+inline std::string readScenario(const std::string& name) {
+  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + name;
+  std::ifstream in(path);
+  EXPECT_TRUE(in.good()) << path;
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 inline std::unique_ptr<World> makeWorld(const std::string& yaml, int threads = 1) {
   return std::make_unique<World>(yaml, threads);
