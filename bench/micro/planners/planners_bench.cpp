@@ -1,14 +1,18 @@
 // Hot paths of the planners: obstacle sampling (thesis Algorithm 1), milestone descent on the risk
-// function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric.
-// The world is thesis Fig 3.7 (bench/scenarios/thesis_fig3_7.yaml) or the 5-DoF arm of Fig 4.4.
+// function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric,
+// and one query on a built SVMP roadmap (many queries, `svmp-plan --queries`).
+// The world is thesis Fig 3.7 (bench/scenarios/thesis_fig3_7.yaml) or the 5-DoF arm of Fig 4.4; the
+// queries run on svpp_3d20_01 (a point among 20 boxes) and fastron_panda (the Panda).
 #include <benchmark/benchmark.h>
 
 #include <memory>
 
+#include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
 #include "planners/obstacle_sampler.hpp"
 #include "cspace/scenario/scenario.hpp"
 #include "planners/nearest_neighbors.hpp"
+#include "planners/roadmap_builder.hpp"
 #include "planners/svmp_planner.hpp"
 
 namespace svmp {
@@ -104,6 +108,51 @@ void BM_NearestNeighbors(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_NearestNeighbors)->Arg(1000)->Arg(10000);
+
+// One query per iteration on SVMP's roadmap built with the file's parameters (seed 1): the roadmap is
+// assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers one of 100 valid
+// start-goal pairs in turn, every path proven (no repair: the roadmap stays the same).
+void BM_RoadmapQuery(benchmark::State& state) {
+  const std::string file = state.range(0) == 0 ? "svpp_3d20_01.yaml" : "fastron_panda.yaml";
+  const cspace::Scenario scenario = cspace::loadScenario(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + file);
+  const cspace::ConfigurationSpace space = scenario.makeSpace();
+  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
+  const cspace::DiscreteMotionValidator validator(checker, space, scenario.resolution);
+  const cspace::CertifiedMotionValidator certifier(checker, space, scenario.resolution);
+  planners::PlanningContext context{space, checker, validator, 1};
+  context.certifier = &certifier;
+  planners::SvmpPlanner svmp(context, planners::SvmpOptions::fromParameters(scenario.paramsFor("svmp")));
+  if (!svmp.build(1).solved()) {
+    state.SkipWithError("svmp build failed");
+    return;
+  }
+  const planners::Roadmap& roadmap = svmp.roadmap();
+  const planners::NearestNeighbors nn(roadmap.nodes(), space.metricScale());
+  cspace::Rng rng(7);
+  auto valid = [&] {
+    for (;;)
+      if (Eigen::VectorXd q = space.sampleUniform(rng); checker.isValid(q)) return q;
+  };
+  std::vector<cspace::Query> queries(100);
+  for (auto& q : queries) q.start = valid(), q.goal = valid();
+  planners::Roadmap with_query;
+  size_t next = 0;
+  long solved = 0, straight = 0;
+  for (auto _ : state) {
+    with_query = roadmap;
+    const planners::QueryOutcome out = queryRoadmap(with_query, nn, context, queries[next++ % queries.size()],
+                                                    svmp.options().k);
+    solved += !out.path.empty();
+    straight += out.path.size() == 2;
+    benchmark::DoNotOptimize(out);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["solved_share"] = static_cast<double>(solved) / static_cast<double>(state.iterations());
+  state.counters["straight_share"] = static_cast<double>(straight) / static_cast<double>(state.iterations());
+  state.counters["milestones"] = roadmap.numNodes();
+  state.SetLabel(file.substr(0, file.size() - 5));
+}
+BENCHMARK(BM_RoadmapQuery)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace svmp
