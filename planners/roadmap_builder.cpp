@@ -4,20 +4,23 @@ namespace svmp::planners {
 
 namespace {
 
+// The certifier's proof of a-b, its time added to certify_ms.
+bool prove(const PlanningContext& context, const Eigen::VectorXd& a, const Eigen::VectorXd& b, double& certify_ms) {
+  const auto t0 = Clock::now();
+  const bool proven = context.certifier->isValid(a, b);
+  certify_ms += msSince(t0);
+  return proven;
+}
+
 // The straight-line local planner: one validated segment, one edge. With a certifier and
 // `certify_ms`, the segment must be proven too (the edge is marked certified, the proof's time added).
 bool connect(Roadmap& roadmap, const PlanningContext& context, int a, int b, double* certify_ms) {
   const Eigen::VectorXd &qa = roadmap.node(a), &qb = roadmap.node(b);
   if (!context.validator.isValid(qa, qb)) return false;
-  const bool prove = certify_ms && context.certifier;
-  if (prove) {
-    const auto t0 = Clock::now();
-    const bool proven = context.certifier->isValid(qa, qb);
-    *certify_ms += msSince(t0);
-    if (!proven) return false;
-  }
+  const bool proving = certify_ms && context.certifier;
+  if (proving && !prove(context, qa, qb, *certify_ms)) return false;
   roadmap.addEdge(a, b, context.space.distance(qa, qb));
-  if (prove) roadmap.markCertified(a, b);
+  if (proving) roadmap.markCertified(a, b);
   return true;
 }
 
@@ -112,10 +115,7 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
       return context.validator.isValid(a, b);
     };
     const auto certify = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-      const auto t0 = Clock::now();
-      const bool free = context.certifier->isValid(a, b);
-      certify_ms += msSince(t0);
-      return free;
+      return prove(context, a, b, certify_ms);
     };
     const bool disproved =
         !pass(&Roadmap::isChecked, check, &Roadmap::markChecked, true) ||
@@ -132,16 +132,10 @@ QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   // The straight motion first: when it is free and proven it is the shortest path there is, and the
   // endpoints' connections to the roadmap (long motions on an arm: about 300 checks each on
   // panda_shelf) are not needed.
-  if (context.validator.isValid(query.start, query.goal)) {
-    const auto t0 = Clock::now();
-    const bool proven = !context.certifier || context.certifier->isValid(query.start, query.goal);
-    out.certify_ms += context.certifier ? msSince(t0) : 0.0;
-    if (proven) {
-      roadmap.addEdge(out.start_node, out.goal_node, context.space.distance(query.start, query.goal));
-      out.path = {query.start, query.goal};
-      out.certified = context.certifier != nullptr;
-      return out;
-    }
+  if (connect(roadmap, context, out.start_node, out.goal_node, &out.certify_ms)) {
+    out.path = {query.start, query.goal};
+    out.certified = context.certifier != nullptr;
+    return out;
   }
   for (int endpoint : {out.start_node, out.goal_node})
     connectEndpoint(roadmap, nn, context, endpoint, k, out.certify_ms);
