@@ -11,6 +11,7 @@
 #include "cspace/collision_checker.hpp"
 #include "planners/obstacle_sampler.hpp"
 #include "cspace/scenario/scenario.hpp"
+#include "bench/experiments/experiment.hpp"
 #include "planners/nearest_neighbors.hpp"
 #include "planners/roadmap_builder.hpp"
 #include "planners/svmp_planner.hpp"
@@ -110,8 +111,9 @@ void BM_NearestNeighbors(benchmark::State& state) {
 BENCHMARK(BM_NearestNeighbors)->Arg(1000)->Arg(10000);
 
 // One query per iteration on SVMP's roadmap built with the file's parameters (seed 1): the roadmap is
-// assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers one of 100 valid
-// start-goal pairs in turn, every path proven (no repair: the roadmap stays the same).
+// assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers in turn the 100
+// valid start-goal pairs of `svmp-plan --queries 100 --seed 1`, every path proven (no repair: the
+// roadmap stays the same).
 void BM_RoadmapQuery(benchmark::State& state) {
   const std::string file = state.range(0) == 0 ? "svpp_3d20_01.yaml" : "fastron_panda.yaml";
   const cspace::Scenario scenario = cspace::loadScenario(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + file);
@@ -128,13 +130,7 @@ void BM_RoadmapQuery(benchmark::State& state) {
   }
   const planners::Roadmap& roadmap = svmp.roadmap();
   const planners::NearestNeighbors nn(roadmap.nodes(), space.metricScale());
-  cspace::Rng rng(7);
-  auto valid = [&] {
-    for (;;)
-      if (Eigen::VectorXd q = space.sampleUniform(rng); checker.isValid(q)) return q;
-  };
-  std::vector<cspace::Query> queries(100);
-  for (auto& q : queries) q.start = valid(), q.goal = valid();
+  const std::vector<cspace::Query> queries = experiments::randomQueries(scenario, 100, 1);
   planners::Roadmap with_query;
   size_t next = 0;
   long solved = 0, straight = 0;
