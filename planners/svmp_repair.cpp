@@ -1,7 +1,7 @@
 // SVMP's query repair (thesis ch. 3.5, future work; docs/reproduction.md "Repair along the decision
-// boundary" and "Trees in repair"): each round takes the narrowest pairs of the disconnection,
-// bridges them along the decision boundary, guides random samples around them down to the boundary,
-// and where those do not join the start's and the goal's components grows RRT-Connect trees from both.
+// boundary" and "Trees in repair"): each round grows RRT-Connect trees from the start's and the goal's
+// components, and where those do not join the two, takes the narrowest pairs of the disconnection,
+// bridges them along the decision boundary and guides random samples around them down to the boundary.
 #include <functional>
 #include <limits>
 #include <random>
@@ -140,40 +140,44 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     why = "no node outside the start's and goal's components to guide samples towards";
     return false;
   }
-  int added = 0;
-  for (const Frontier& f : frontiers) added += bridge(with_query.node(f.a), f.a < old_n ? f.a : -1, f.b);
-  // Milestones as close as a quarter of the disconnection: a passage narrower than the usual
-  // duplicate radius needs them.
-  added += addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true,
-                         std::min(options_.duplicate_radius, 0.25 * narrowest));
-  const int guided_end = roadmap_.numNodes();
-  if (added > 0) {
-    nn_.emplace(roadmap_.nodes(), scale);
-    connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
-  }
-  // Where the guided nodes did not join the two, trees grown from both (planners/tree_connect.hpp).
-  // Joined only counts when a path between them holds its proofs: an edge that passes the sampled check
-  // but not the proof (fastron_panda: of length 4-5) would otherwise skip the trees round after round.
-  int checks = 0;
-  const auto joined = [&] {
-    return roadmap_.connected(start_root, goal_side.front()) &&
-           !provenPath(roadmap_, start_root, goal_side.front(), context_, nullptr, checks, certify_ms).empty();
-  };
-  if (options_.repair_trees && start_root >= 0 && !goal_side.empty() && !stop() && !joined()) {
+  // Trees first, grown from both components (planners/tree_connect.hpp). Where the components are
+  // apart only by open space (panda_shelf: an endpoint in a shelf compartment whose component holds
+  // 1-20 nodes), they join in a few hundred checks, and the guided round that would cost 50 ms is not
+  // needed. Joined only counts when a path between them holds its proofs: an edge that passes the
+  // sampled check but not the proof (fastron_panda: of length 4-5) would otherwise end the repair
+  // round after round.
+  int added = 0, checks = 0;
+  if (options_.repair_trees && start_root >= 0 && !goal_side.empty() && !stop()) {
     std::vector<int> start_tree, goal_tree;
-    for (int j = 0; j < guided_end; ++j) {
+    for (int j = 0; j < old_n; ++j) {
       if (roadmap_.connected(j, start_root)) start_tree.push_back(j);
       if (roadmap_.connected(j, goal_side.front())) goal_tree.push_back(j);
     }
     const TreeConnectResult trees = connectByTrees(roadmap_, start_tree, goal_tree, context_, options_.tree_range,
                                                    options_.repair_samples, tree_rng, stop);
-    grown_by_trees_.resize(guided_end, false);
+    grown_by_trees_.resize(old_n, false);
     grown_by_trees_.resize(roadmap_.numNodes(), true);
     if (trees.added > 0) {
       added += trees.added;
       nn_.emplace(roadmap_.nodes(), scale);
-      connectMilestones(roadmap_, *nn_, context_, options_.k, guided_end, stop);
+      connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
     }
+    if (roadmap_.connected(start_root, goal_side.front()) &&
+        !provenPath(roadmap_, start_root, goal_side.front(), context_, nullptr, checks, certify_ms).empty()) {
+      why.clear();
+      return true;
+    }
+  }
+  // Then the guided nodes, where the trees did not join the two.
+  const int guided_begin = roadmap_.numNodes();
+  for (const Frontier& f : frontiers) added += bridge(with_query.node(f.a), f.a < old_n ? f.a : -1, f.b);
+  // Milestones as close as a quarter of the disconnection: a passage narrower than the usual
+  // duplicate radius needs them.
+  added += addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true,
+                         std::min(options_.duplicate_radius, 0.25 * narrowest));
+  if (roadmap_.numNodes() > guided_begin) {
+    nn_.emplace(roadmap_.nodes(), scale);
+    connectMilestones(roadmap_, *nn_, context_, options_.k, guided_begin, stop);
   }
   if (added == 0) {
     why = "the last round's " + std::to_string(starts.size()) + " guided samples gave no new free milestone";
