@@ -48,9 +48,9 @@ struct SvmpOptions {
   // or goal's component costs none, up to 4 x repair_rounds rounds in all.
   int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
-  // A repair round first grows RRT-Connect trees from the start's and the goal's components
-  // (planners/tree_connect.hpp), and guides nodes only where they do not join the two: repair_samples
-  // uniform samples, steps of
+  // A repair round whose guided nodes do not join the start's and the goal's components then grows
+  // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
+  // nodes): repair_samples uniform samples, steps of
   // tree_range (weighted metric; kDerived: OMPL's default range for RRTConnect, a fifth of the
   // space's diagonal).
   bool repair_trees = true;

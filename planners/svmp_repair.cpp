@@ -1,7 +1,8 @@
 // SVMP's query repair (thesis ch. 3.5, future work; docs/reproduction.md "Repair along the decision
-// boundary" and "Trees in repair"): each round grows RRT-Connect trees from the start's and the goal's
-// components, and where those do not join the two, takes the narrowest pairs of the disconnection,
-// bridges them along the decision boundary and guides random samples around them down to the boundary.
+// boundary" and "Trees in repair"): each round takes the narrowest pairs of the disconnection,
+// bridges them along the decision boundary, guides random samples around them down to the boundary,
+// and where those do not join the start's and the goal's components grows RRT-Connect trees from both;
+// trees go first when one component is an endpoint's pocket of at most k nodes.
 #include <functional>
 #include <limits>
 #include <random>
@@ -140,35 +141,54 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     why = "no node outside the start's and goal's components to guide samples towards";
     return false;
   }
-  // Trees first, grown from both components (planners/tree_connect.hpp). Where the components are
-  // apart only by open space (panda_shelf: an endpoint in a shelf compartment whose component holds
-  // 1-20 nodes), they join in a few hundred checks, and the guided round that would cost 50 ms is not
-  // needed. Joined only counts when a path between them holds its proofs: an edge that passes the
-  // sampled check but not the proof (fastron_panda: of length 4-5) would otherwise end the repair
-  // round after round.
+  // RRT-Connect trees grown from both components (planners/tree_connect.hpp). Joined only counts when
+  // a path between them holds its proofs: an edge that passes the sampled check but not the proof
+  // (fastron_panda: of length 4-5) would otherwise skip the trees round after round.
   int added = 0, checks = 0;
-  if (options_.repair_trees && start_root >= 0 && !goal_side.empty() && !stop()) {
+  const auto joined = [&] {
+    return roadmap_.connected(start_root, goal_side.front()) &&
+           !provenPath(roadmap_, start_root, goal_side.front(), context_, nullptr, checks, certify_ms).empty();
+  };
+  const auto growTrees = [&] {
+    const int first = roadmap_.numNodes();
     std::vector<int> start_tree, goal_tree;
-    for (int j = 0; j < old_n; ++j) {
+    for (int j = 0; j < first; ++j) {
       if (roadmap_.connected(j, start_root)) start_tree.push_back(j);
       if (roadmap_.connected(j, goal_side.front())) goal_tree.push_back(j);
     }
     const TreeConnectResult trees = connectByTrees(roadmap_, start_tree, goal_tree, context_, options_.tree_range,
                                                    options_.repair_samples, tree_rng, stop);
-    grown_by_trees_.resize(old_n, false);
+    grown_by_trees_.resize(first, false);
     grown_by_trees_.resize(roadmap_.numNodes(), true);
     if (trees.added > 0) {
       added += trees.added;
       nn_.emplace(roadmap_.nodes(), scale);
-      connectMilestones(roadmap_, *nn_, context_, options_.k, old_n, stop);
+      connectMilestones(roadmap_, *nn_, context_, options_.k, first, stop);
     }
-    if (roadmap_.connected(start_root, goal_side.front()) &&
-        !provenPath(roadmap_, start_root, goal_side.front(), context_, nullptr, checks, certify_ms).empty()) {
+  };
+  const bool trees = options_.repair_trees && start_root >= 0 && !goal_side.empty();
+  // A component of at most k roadmap nodes is an endpoint's pocket that the roadmap barely reaches
+  // (panda_shelf's random queries: an end in a shelf compartment, 1-20 nodes): trees grown out of it
+  // join it in a few hundred checks, a guided round costs about 50 ms there. Between two large
+  // components the guided nodes go first: they find the passage the roadmap missed, where the trees
+  // find a longer way round (gap_0.002: paths 33% longer with trees first).
+  int smaller = 0;
+  if (trees) {
+    int on_start = 0, on_goal = 0;
+    for (int j = 0; j < old_n; ++j) {
+      on_start += roadmap_.connected(j, start_root);
+      on_goal += roadmap_.connected(j, goal_side.front());
+    }
+    smaller = std::min(on_start, on_goal);
+  }
+  const bool trees_first = trees && smaller <= options_.k;
+  if (trees_first && !stop()) {
+    growTrees();
+    if (joined()) {
       why.clear();
       return true;
     }
   }
-  // Then the guided nodes, where the trees did not join the two.
   const int guided_begin = roadmap_.numNodes();
   for (const Frontier& f : frontiers) added += bridge(with_query.node(f.a), f.a < old_n ? f.a : -1, f.b);
   // Milestones as close as a quarter of the disconnection: a passage narrower than the usual
@@ -179,6 +199,8 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     nn_.emplace(roadmap_.nodes(), scale);
     connectMilestones(roadmap_, *nn_, context_, options_.k, guided_begin, stop);
   }
+  // Where the guided nodes did not join the two, the trees.
+  if (trees && !trees_first && !stop() && !joined()) growTrees();
   if (added == 0) {
     why = "the last round's " + std::to_string(starts.size()) + " guided samples gave no new free milestone";
     return true;  // another round draws new samples
