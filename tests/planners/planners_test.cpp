@@ -232,11 +232,8 @@ TEST(MakePlanner, KnowsEveryListedName) {
 TEST(LazyRoadmap, QueryChecksOnlyItsPathAndRemovesBlockedEdges) {
   auto w = makeWorld(gapScenario(0.03, kPlanners));
   w->certify();
-  Roadmap milestones;
-  for (auto [x, y] : {std::pair{0.3, 0.1}, {0.7, 0.1}, {0.3, 0.5}, {0.7, 0.5}, {0.05, 0.95}})
-    milestones.addNode(Eigen::Vector2d(x, y));
-  for (auto [a, b] : {std::pair{0, 1}, {0, 2}, {2, 3}, {3, 1}, {2, 4}})
-    milestones.addEdge(a, b, w->space.distance(milestones.node(a), milestones.node(b)), false);
+  Roadmap milestones = test::planarRoadmap(w->space, {{0.3, 0.1}, {0.7, 0.1}, {0.3, 0.5}, {0.7, 0.5}, {0.05, 0.95}},
+                                           {{0, 1}, {0, 2}, {2, 3}, {3, 1}, {2, 4}}, false);
   const NearestNeighbors nn(milestones.nodes(), w->space.metricScale());
   cspace::Query query;
   query.start = Eigen::Vector2d(0.2, 0.1);

@@ -11,6 +11,7 @@ namespace {
 
 using test::gapScenario;
 using test::makeWorld;
+using test::planarRoadmap;
 
 const std::string kPlanners = "  prm: {samples: 100, k: 5}\n";
 
@@ -31,9 +32,7 @@ const std::string kThinWall =
 TEST(RoadmapQuery, AFreeProvenStraightMotionIsThePathWithoutEndpointEdges) {
   auto w = makeWorld(gapScenario(0.03, kPlanners));
   w->certify();
-  Roadmap milestones;
-  for (auto [x, y] : {std::pair{0.2, 0.2}, {0.3, 0.5}, {0.8, 0.5}}) milestones.addNode(Eigen::Vector2d(x, y));
-  milestones.addEdge(0, 1, w->space.distance(milestones.node(0), milestones.node(1)));
+  Roadmap milestones = planarRoadmap(w->space, {{0.2, 0.2}, {0.3, 0.5}, {0.8, 0.5}}, {{0, 1}}, true);
   const NearestNeighbors nn(milestones.nodes(), w->space.metricScale());
   cspace::Query left;  // both left of the wall: the straight motion is free
   left.start = Eigen::Vector2d(0.1, 0.1);
@@ -58,10 +57,8 @@ TEST(RoadmapQuery, AFreeProvenStraightMotionIsThePathWithoutEndpointEdges) {
 
 TEST(RoadmapQuery, EndpointEdgesThatPassTheSampledCheckButNotTheProofAreNotMade) {
   auto w = makeWorld(kThinWall);
-  Roadmap milestones;
-  milestones.addNode(Eigen::Vector2d(0.6, 0.5));  // beyond the wall, 0.1 from the start
-  milestones.addNode(Eigen::Vector2d(0.9, 0.8));
-  milestones.addEdge(0, 1, w->space.distance(milestones.node(0), milestones.node(1)));
+  // The first node beyond the wall, 0.1 from the start.
+  Roadmap milestones = planarRoadmap(w->space, {{0.6, 0.5}, {0.9, 0.8}}, {{0, 1}}, true);
   const NearestNeighbors nn(milestones.nodes(), w->space.metricScale());
   for (int i = 0; i < 2; ++i) {
     ASSERT_TRUE(w->validator.isValid(w->query().start, milestones.node(i))) << "sampled check misses the wall";
@@ -92,11 +89,8 @@ TEST(RoadmapQuery, EndpointEdgesThatPassTheSampledCheckButNotTheProofAreNotMade)
 TEST(RoadmapQuery, ProvenPathRemovesEdgesTheProofRefusesAndGoesRound) {
   auto w = makeWorld(kThinWall);
   w->certify();
-  Roadmap milestones;
-  for (auto [x, y] : {std::pair{0.5, 0.5}, {0.6, 0.5}, {0.9, 0.9}, {0.5, 0.7}, {0.6, 0.7}})
-    milestones.addNode(Eigen::Vector2d(x, y));
-  for (auto [a, b] : {std::pair{0, 1}, {1, 2}, {0, 3}, {3, 4}, {4, 2}})
-    milestones.addEdge(a, b, w->space.distance(milestones.node(a), milestones.node(b)), false);
+  Roadmap milestones = planarRoadmap(w->space, {{0.5, 0.5}, {0.6, 0.5}, {0.9, 0.9}, {0.5, 0.7}, {0.6, 0.7}},
+                                     {{0, 1}, {1, 2}, {0, 3}, {3, 4}, {4, 2}}, false);
   Roadmap copy = milestones;
   int checks = 0;
   double certify_ms = 0;

@@ -6,9 +6,11 @@
 
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cspace/certified_motion_validator.hpp"
@@ -16,6 +18,7 @@
 #include "cspace/motion_validator.hpp"
 #include "cspace/scenario/scenario.hpp"
 #include "planners/planner_registry.hpp"
+#include "planners/roadmap.hpp"
 
 namespace svmp::planners::test {
 
@@ -56,6 +59,17 @@ inline std::string readScenario(const std::string& name) {
 
 inline std::unique_ptr<World> makeWorld(const std::string& yaml, int threads = 1) {
   return std::make_unique<World>(yaml, threads);
+}
+
+// A roadmap of planar nodes (x, y) and edges between them costing their distance in `space`, marked
+// checked or not.
+inline Roadmap planarRoadmap(const cspace::ConfigurationSpace& space,
+                             std::initializer_list<std::pair<double, double>> nodes,
+                             std::initializer_list<std::pair<int, int>> edges, bool checked) {
+  Roadmap roadmap;
+  for (auto [x, y] : nodes) roadmap.addNode(Eigen::Vector2d(x, y));
+  for (auto [a, b] : edges) roadmap.addEdge(a, b, space.distance(roadmap.node(a), roadmap.node(b)), checked);
+  return roadmap;
 }
 
 // A point robot in the unit square; a wall x in [0.4, 0.6] split into two obstacles by a horizontal gap
