@@ -390,9 +390,10 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   // A round that grows the start's or the goal's component is progress and costs no budget (up to
   // kMaxRoundsFactor x repair_rounds rounds in all); one without progress spends a round and doubles
   // the spread of the next round's samples (up to 8x).
-  constexpr int kMaxRoundsFactor = 4;
+  constexpr int kMaxRoundsFactor = 8;
   int spent = 0, last_size = -1;
   double widen = 1.0;
+  std::pair<Eigen::VectorXd, Eigen::VectorXd> last_between;
   for (int round = 0;; ++round) {
     Roadmap& with_query = with_query_;
     with_query = roadmap_;
@@ -433,7 +434,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
     const bool repaired =
         budget && !stop() &&
-        repair(with_query, outcome.start_node, outcome.goal_node, widen, rng, tree_rng, stop, why,
+        repair(with_query, outcome.start_node, outcome.goal_node, widen, last_between, rng, tree_rng, stop, why,
                result.times.certify_ms);
     if (stop()) {
       result.status = PlanStatus::kTimeout;

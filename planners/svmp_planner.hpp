@@ -45,7 +45,8 @@ struct SvmpOptions {
   int descent_iterations = 100;
   double duplicate_radius = -1;   // milestones closer than this are merged; < 0: step / 2
   // Query repair rounds without progress allowed (0 disables repair); a round that grows the start's
-  // or goal's component costs none, up to 4 x repair_rounds rounds in all.
+  // or goal's component costs none, up to 8 x repair_rounds rounds in all (4x stopped runs in 3-D
+  // tunnels whose components were still growing; docs/reproduction.md, "Problems made after the defaults").
   int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
@@ -121,9 +122,11 @@ class SvmpPlanner final : public Planner {
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
                     const Termination& stop, bool keep_free_starts = false, double duplicate_radius = -1);
   // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
-  // round added nothing. The trees draw from tree_rng, so the guided samples' draws do not depend on
-  // them. Proofs it runs add their time to certify_ms.
-  bool repair(Roadmap& with_query, int start_node, int goal_node, double widen, cspace::Rng& rng,
+  // round added nothing. last_between: the closest pair between the start's and the goal's components
+  // of the round before (updated). The trees draw from tree_rng, so the guided samples' draws do not
+  // depend on them. Proofs it runs add their time to certify_ms.
+  bool repair(Roadmap& with_query, int start_node, int goal_node, double widen,
+              std::pair<Eigen::VectorXd, Eigen::VectorXd>& last_between, cspace::Rng& rng,
               cspace::Rng& tree_rng, const Termination& stop, std::string& why, double& certify_ms);
   // Links `a` (roadmap node a_node, or -1 for a query's endpoint) to node b_node along the decision
   // boundary: a blocked segment is split at a tangent step from either end or at its middle pulled

@@ -3,6 +3,7 @@
 // bridges them along the decision boundary, guides random samples around them down to the boundary,
 // and where those do not join the start's and the goal's components grows RRT-Connect trees from both;
 // trees go first when one component is an endpoint's pocket of at most k nodes.
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <random>
@@ -73,6 +74,7 @@ int SvmpPlanner::bridge(const Eigen::VectorXd& a, int a_node, int b_node) {
 }
 
 bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, double widen,
+                         std::pair<Eigen::VectorXd, Eigen::VectorXd>& last_between,
                          cspace::Rng& rng, cspace::Rng& tree_rng, const Termination& stop, std::string& why,
                          double& certify_ms) {
   // Frontier of a component: its node closest to a node outside it. Random configurations around the
@@ -81,47 +83,62 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   std::vector<Eigen::VectorXd> starts;
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const int search = std::min(nn_->size(), 4 * options_.k + 1);
   struct Frontier {
     int a, b;        // a node of with_query in the component, b a node of roadmap_ outside it
     double gap;      // their distance
     bool alone;      // a is an endpoint without edges
   };
+  const int old_n = roadmap_.numNodes();
+  // For each node of with_query that is `inside`, its nearest roadmap node that is `outside`, exact (a
+  // k-d tree over the outside nodes: a search among each node's nearest few missed a tunnel's nodes
+  // once the repair had filled the space at its mouth); the closest pair first.
+  const auto pairsBetween = [&](const std::function<bool(int)>& inside, const std::function<bool(int)>& outside) {
+    std::vector<Frontier> pairs;
+    std::vector<int> ids;
+    std::vector<Eigen::VectorXd> points;
+    for (int j = 0; j < old_n; ++j)
+      if (outside(j)) ids.push_back(j), points.push_back(roadmap_.node(j));
+    if (ids.empty()) return pairs;
+    const NearestNeighbors outside_nn(points, scale);
+    for (int i = 0; i < with_query.numNodes(); ++i) {
+      if (!inside(i)) continue;
+      const int j = outside_nn.nearest(with_query.node(i), 1).front();
+      pairs.push_back({i, ids[j], context_.space.distance(with_query.node(i), points[j]), false});
+    }
+    std::sort(pairs.begin(), pairs.end(), [](const Frontier& x, const Frontier& y) { return x.gap < y.gap; });
+    return pairs;
+  };
   std::vector<Frontier> frontiers;
   for (int endpoint : {start_node, goal_node}) {
-    Frontier f{-1, -1, std::numeric_limits<double>::infinity(), false};
-    for (int i = 0; i < with_query.numNodes(); ++i) {
-      if (!with_query.connected(endpoint, i)) continue;
-      for (int j : nn_->nearest(with_query.node(i), search)) {
-        if (with_query.connected(endpoint, j)) continue;
-        const double d = context_.space.distance(with_query.node(i), roadmap_.node(j));
-        if (d < f.gap) f = {i, j, d, i == endpoint};
-        break;
-      }
-    }
-    if (f.a >= 0) frontiers.push_back(f);
+    const auto pairs = pairsBetween([&](int i) { return with_query.connected(endpoint, i); },
+                                    [&](int j) { return !with_query.connected(endpoint, j); });
+    if (pairs.empty()) continue;
+    frontiers.push_back(pairs.front());
+    frontiers.back().alone = pairs.front().a == endpoint;
   }
   // The closest pair between the start's and the goal's components: the nearest outside nodes may
   // lead into dead ends while the two grow along one passage towards each other.
-  Frontier between{-1, -1, std::numeric_limits<double>::infinity(), false};
-  const int old_n = roadmap_.numNodes();
   int start_root = -1;  // a roadmap node in the start's component
   std::vector<int> goal_side;
-  std::vector<Eigen::VectorXd> goal_points;
   for (int j = 0; j < old_n; ++j) {
     if (start_root < 0 && with_query.connected(start_node, j)) start_root = j;
-    if (with_query.connected(goal_node, j)) goal_side.push_back(j), goal_points.push_back(roadmap_.node(j));
+    if (with_query.connected(goal_node, j)) goal_side.push_back(j);
   }
-  if (!goal_side.empty()) {
-    const NearestNeighbors goal_nn(goal_points, scale);
-    for (int i = 0; i < with_query.numNodes(); ++i) {
-      if (!with_query.connected(start_node, i)) continue;
-      const int j = goal_side[goal_nn.nearest(with_query.node(i), 1).front()];
-      if (const double d = context_.space.distance(with_query.node(i), roadmap_.node(j)); d < between.gap)
-        between = {i, j, d, false};
-    }
+  const std::vector<Frontier> between = pairsBetween([&](int i) { return with_query.connected(start_node, i); },
+                                                     [&](int j) { return with_query.connected(goal_node, j); });
+  if (!between.empty()) frontiers.push_back(between.front());
+  // When the closest pair is last round's again, also one drawn among the pairs within 4x its gap: the
+  // closest may face the other component across a wall (a maze of tunnels) round after round, while
+  // the components grow elsewhere (progress) and meet at a pair farther apart.
+  if (!between.empty()) {
+    const Eigen::VectorXd &a = with_query.node(between.front().a), &b = roadmap_.node(between.front().b);
+    const bool again = last_between.first.size() == a.size() && last_between.first == a && last_between.second == b;
+    last_between = {a, b};
+    const auto within = std::upper_bound(between.begin(), between.end(), 4 * between.front().gap,
+                                         [](double g, const Frontier& f) { return g < f.gap; });
+    if (const auto count = static_cast<int>(within - between.begin()); again && count > 1)
+      frontiers.push_back(between[std::uniform_int_distribution<int>(1, count - 1)(rng)]);
   }
-  if (between.a >= 0) frontiers.push_back(between);
   double narrowest = std::numeric_limits<double>::infinity();
   for (const Frontier& f : frontiers) {
     narrowest = std::min(narrowest, f.gap);

@@ -440,5 +440,21 @@ TEST(TreeConnect, SvmpRepairSolvesFig44WhereGuidedRoundsAloneDidNot) {
   }
 }
 
+// A 3-D tunnel of square section 0.01 with two right-angle turns (bench/heldout, made after the
+// defaults): with the frontier taken among each node's nearest few, seeds 12 and 17 ended after 20
+// repair rounds with the tunnel's middle nodes never chosen (the space at its mouth was full of the
+// start's nodes) and the components still growing. The exact closest pairs and rounds up to 8 x
+// repair_rounds solve both; certified, densely free.
+TEST(NarrowPassage, SvmpRepairThreadsA3dTunnelWithTwoTurns) {
+  auto w = makeWorld(test::readScenario("../heldout/tunnel3d_step_01.yaml"));
+  w->certify();
+  for (std::uint64_t seed : {12, 17}) {
+    const PlanResult r = w->planner("svmp")->solve(w->query(), seed);
+    ASSERT_TRUE(r.solved()) << "seed " << seed << ": " << r.message;
+    EXPECT_TRUE(r.certified);
+    EXPECT_TRUE(pathIsValid(*w, r.path)) << "seed " << seed;
+  }
+}
+
 }  // namespace
 }  // namespace svmp::planners
