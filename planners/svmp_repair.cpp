@@ -116,21 +116,21 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     frontiers.push_back(pairs.front());
     frontiers.back().alone = pairs.front().a == endpoint;
   }
-  // The closest pair between the start's and the goal's components: the nearest outside nodes may
-  // lead into dead ends while the two grow along one passage towards each other.
   int start_root = -1;  // a roadmap node in the start's component
   std::vector<int> goal_side;
   for (int j = 0; j < old_n; ++j) {
     if (start_root < 0 && with_query.connected(start_node, j)) start_root = j;
     if (with_query.connected(goal_node, j)) goal_side.push_back(j);
   }
+  // The closest pair between the start's and the goal's components: the nearest outside nodes may
+  // lead into dead ends while the two grow along one passage towards each other.
   const std::vector<Frontier> between = pairsBetween([&](int i) { return with_query.connected(start_node, i); },
                                                      [&](int j) { return with_query.connected(goal_node, j); });
-  if (!between.empty()) frontiers.push_back(between.front());
-  // When the closest pair is last round's again, also one drawn among the pairs within 4x its gap: the
-  // closest may face the other component across a wall (a maze of tunnels) round after round, while
-  // the components grow elsewhere (progress) and meet at a pair farther apart.
   if (!between.empty()) {
+    frontiers.push_back(between.front());
+    // When it is last round's pair again, also one drawn among the pairs within 4x its gap: the closest
+    // may face the other component across a wall (a maze of tunnels) round after round, while the
+    // components grow elsewhere (progress) and meet at a pair farther apart.
     const Eigen::VectorXd &a = with_query.node(between.front().a), &b = roadmap_.node(between.front().b);
     const bool again = last_between.first.size() == a.size() && last_between.first == a && last_between.second == b;
     last_between = {a, b};
