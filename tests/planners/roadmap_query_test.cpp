@@ -2,8 +2,11 @@
 // made, provenPath; and SVMP's repair on fastron_panda's random queries.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include "bench/experiments/experiment.hpp"
 #include "planners/roadmap_builder.hpp"
+#include "planners/svmp_planner.hpp"
 #include "test_world.hpp"
 
 namespace svmp::planners {
@@ -129,6 +132,33 @@ TEST(RoadmapQuery, SvmpAnswersFastronPandasRandomQueriesAllProven) {
       EXPECT_TRUE(w->certifier.isValid(r.path[i], r.path[i + 1]) || w->certifier.isValid(r.path[i + 1], r.path[i]))
           << "segment " << i;
   }
+}
+
+// A pair that no path joins (a wall of two overlapping boxes between them): the query fails after its
+// repair rounds, and the roadmap is the one it found. Those rounds' nodes filled both components; kept,
+// they would slow every later query and make the next such pair dearer.
+TEST(RoadmapQuery, SvmpFailedQueryLeavesTheRoadmapAsItFoundIt) {
+  auto w = makeWorld(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: wall_lower, shape: box, size: [0.2, 0.65, 1.0], position: [0.5, 0.225, 0]}\n"
+      "  - {name: wall_upper, shape: box, size: [0.2, 0.65, 1.0], position: [0.5, 0.775, 0]}\n"
+      "start: [0.1, 0.1]\n"
+      "goal: [0.9, 0.9]\n"
+      "resolution: 0.002\n");
+  w->certify();
+  auto planner = w->planner("svmp");
+  const auto& svmp = dynamic_cast<const SvmpPlanner&>(*planner);
+  ASSERT_TRUE(planner->build(1).solved());
+  const int nodes = svmp.roadmap().numNodes();
+  const PlanResult r = planner->query(w->query(), 1);
+  ASSERT_FALSE(r.solved());
+  std::smatch m;
+  const std::string message = r.message;
+  ASSERT_TRUE(std::regex_search(message, m, std::regex("of ([0-9]+) nodes"))) << message;
+  EXPECT_GT(std::stoi(m[1]), nodes + 100) << "the repair rounds added nodes: " << message;
+  EXPECT_EQ(svmp.roadmap().numNodes(), nodes);
+  EXPECT_EQ(r.milestones, nodes);
 }
 
 }  // namespace
