@@ -45,7 +45,21 @@ void Roadmap::addEdge(int a, int b, double cost, bool checked) {
   ++num_edges_;
 }
 
+namespace {
+std::uint64_t pairKey(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+}  // namespace
+
+bool Roadmap::isBlocked(int a, int b) const {
+  return std::binary_search(blocked_.begin(), blocked_.end(), pairKey(a, b));
+}
+
 void Roadmap::removeEdge(int a, int b) {
+  const std::uint64_t key = pairKey(a, b);
+  if (const auto at = std::lower_bound(blocked_.begin(), blocked_.end(), key); at == blocked_.end() || *at != key)
+    blocked_.insert(at, key);
   auto drop = [this](int from, int to) {
     auto& list = adjacency_[from];
     const auto it = std::find_if(list.begin(), list.end(), [to](const Edge& e) { return e.to == to; });
@@ -106,6 +120,7 @@ bool Roadmap::isCertified(int a, int b) const {
 void Roadmap::clear() {
   nodes_.clear();
   adjacency_.clear();
+  blocked_.clear();
   components_.resize(0);
   stale_ = false;
   num_edges_ = 0;

@@ -6,6 +6,7 @@
 // Components count unchecked edges: they are what the roadmap may connect, not what it has proven.
 // Thread safety: none; one planner owns it.
 #include <Eigen/Core>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -41,7 +42,10 @@ class Roadmap {
   bool hasEdge(int a, int b) const;
   // Removes the edge a-b (both directions); no-op when absent. The components are recomputed when
   // next asked for (a lazy query removes edges one by one and needs them only when its search fails).
+  // The pair is remembered as blocked: edges are removed when their motion fails, and the eager pass
+  // after a failed lazy query would otherwise check the same motions again.
   void removeEdge(int a, int b);
+  bool isBlocked(int a, int b) const;
   // Removes every unchecked edge; returns how many.
   int dropUnchecked();
   void markChecked(int a, int b);
@@ -73,6 +77,7 @@ class Roadmap {
   std::vector<Eigen::VectorXd> nodes_;
   std::vector<std::vector<Edge>> adjacency_;
   UnionFind components_;
+  std::vector<std::uint64_t> blocked_;  // sorted keys of removed pairs (pairKey)
   bool stale_ = false;  // an edge was removed since components_ was built
   int num_edges_ = 0;
 };

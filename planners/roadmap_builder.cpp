@@ -24,7 +24,8 @@ bool connect(Roadmap& roadmap, const PlanningContext& context, int a, int b, dou
   return true;
 }
 
-// Tries `node` against up to k of its `search` nearest indexed nodes that lie in other components.
+// Tries `node` against up to k of its `search` nearest indexed nodes that lie in other components (a
+// pair a query found blocked counts as tried, without checking it again).
 void connectToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
                       int node, int k, int search) {
   int tried = 0;
@@ -32,7 +33,7 @@ void connectToNearest(Roadmap& roadmap, const NearestNeighbors& nn, const Planni
     if (tried >= k) break;
     if (j == node || roadmap.connected(node, j)) continue;
     ++tried;
-    connect(roadmap, context, node, j, nullptr);
+    if (!roadmap.isBlocked(node, j)) connect(roadmap, context, node, j, nullptr);
   }
 }
 
@@ -82,9 +83,14 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
                             int& checks, double& certify_ms) {
   const int shared = milestones ? milestones->numNodes() : 0;
   const Eigen::VectorXd target = roadmap.node(to);
+  // The searches repeat after each removal (hundreds of times on the arms' lazy roadmaps); the
+  // heuristic of a node does not change between them.
+  std::vector<double> heuristic(roadmap.numNodes(), -1.0);
   for (;;) {
     const auto nodes = roadmap.shortestPath(from, to, [&](int v) {
-      return context.space.distance(roadmap.node(v), target);
+      double& h = heuristic[v];
+      if (h < 0) h = context.space.distance(roadmap.node(v), target);
+      return h;
     });
     if (nodes.empty()) return nodes;
     // One pass over the path's edges not yet `done`: each that passes `test` is marked, each that

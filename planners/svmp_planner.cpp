@@ -37,6 +37,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.tree_range = params.getDouble("tree_range", o.tree_range, -1, 1e6);
   o.interior_fraction = params.getDouble("interior_fraction", o.interior_fraction, 0, 1);
   o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
+  o.defer_centring = params.getBool("defer_centring", o.defer_centring);
   o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
   o.kernel = params.getString("kernel", o.kernel, {"rbf", "fk"});
   o.classes = params.getString("classes", o.classes, {"auto", "obstacle", "colour"});
@@ -105,6 +106,7 @@ void SvmpPlanner::clear() {
   with_query_.clear();
   grown_by_trees_.clear();
   nn_.reset();
+  uncentred_.clear();
 }
 
 int SvmpPlanner::supportVectors() const {
@@ -198,7 +200,8 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
 }
 
 int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
-                               const Termination& stop, bool keep_free_starts, double duplicate_radius) {
+                               const Termination& stop, bool keep_free_starts, double duplicate_radius,
+                               bool defer_centring) {
   int n = static_cast<int>(starts.size());
   std::vector<Eigen::VectorXd> ends(n);
   std::vector<int> end_class(n);
@@ -241,7 +244,7 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
 #pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
   for (int f = 0; f < static_cast<int>(fresh.size()); ++f) {
     valid[f] = context_.checker.isValid(ends[fresh[f]]);
-    if (valid[f] || raw[fresh[f]]) continue;
+    if (valid[f] || raw[fresh[f]] || defer_centring) continue;
     std::optional<Eigen::VectorXd> centre;
     if (options_.centre_in_passage) centre = centreAlongNormal(end_class[fresh[f]], ends[fresh[f]]);
     if (centre) {
@@ -250,8 +253,25 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
     }
   }
   int added = 0;
-  for (size_t f = 0; f < fresh.size(); ++f)
-    if (valid[f]) roadmap_.addNode(ends[fresh[f]]), ++added;
+  for (size_t f = 0; f < fresh.size(); ++f) {
+    if (valid[f])
+      roadmap_.addNode(ends[fresh[f]]), ++added;
+    else if (defer_centring && !raw[fresh[f]])
+      uncentred_.emplace_back(ends[fresh[f]], end_class[fresh[f]]);
+  }
+  return added;
+}
+
+int SvmpPlanner::centreDeferred() {
+  const int n = static_cast<int>(uncentred_.size());
+  std::vector<std::optional<Eigen::VectorXd>> centres(n);
+#pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
+  for (int i = 0; i < n; ++i) centres[i] = centreAlongNormal(uncentred_[i].second, uncentred_[i].first);
+  uncentred_.clear();
+  int added = 0;
+  for (const auto& c : centres)
+    if (c) roadmap_.addNode(*c), ++added;
+  if (added > 0) nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
   return added;
 }
 
@@ -265,7 +285,8 @@ bool SvmpPlanner::findBoundaryMilestones(PhaseTimes& times, const Termination& s
     starts.push_back(samples_.points.col(i));
     classes.push_back(risk_->classIndex(class_of_label_.at(samples_.labels[i])));
   }
-  addMilestones(starts, classes, stop);
+  addMilestones(starts, classes, stop, false, -1,
+                options_.lazy && options_.centre_in_passage && options_.defer_centring);
   times.milestones_ms += msSince(t0);
   return !stop();
 }
@@ -408,10 +429,12 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       result.status = PlanStatus::kSolved;
       break;
     }
-    // A lazy roadmap that fails gives way to the thesis' eager MakeRoadmap (checked edges are kept),
-    // once per build, and the query runs again as round 0: eager connection reaches other components
-    // beyond the k nearest, and repair's frontiers need the components the roadmap has proven.
-    if (round == 0 && roadmap_.dropUnchecked() > 0) {
+    // A lazy roadmap that fails gives way to the thesis' eager MakeRoadmap (checked edges are kept)
+    // with the deferred centred milestones, once per build, and the query runs again as round 0:
+    // eager connection reaches other components beyond the k nearest, and repair's frontiers need
+    // the components the roadmap has proven.
+    const int changed = round == 0 ? roadmap_.dropUnchecked() + centreDeferred() : 0;
+    if (changed > 0) {
       connectMilestones(roadmap_, *nn_, context_, options_.k, 0, stop);
       --round;
       continue;

@@ -62,6 +62,11 @@ struct SvmpOptions {
   // 10 -> 15 of 20; docs/reproduction.md), 0-0.1 measured alike.
   double interior_fraction = 0.1;
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
+  // With lazy edges, the build's descent ends that collide are centred when a query first fails on
+  // the lazy roadmap, not while building: centring was 2/3 of the milestone phase on Figs 4.4-4.10
+  // and their single queries are answered without those nodes; narrow passages (the gap family)
+  // get them at their first query (docs/reproduction.md, "Centring when a query needs it").
+  bool defer_centring = true;
   bool sample_self_collision = true;  // the self-collision region is one more class
   // "rbf": the thesis' RBF on the weighted joints; "fk": the FK kernel of Das & Yip 2019 (eq. 4), the
   // RBF of width fk_sigma (m) on each control point's workspace position, summed over control points;
@@ -119,8 +124,13 @@ class SvmpPlanner final : public Planner {
   // start is a milestone too (the repair's hybrid with uniform PRM sampling that thesis ch. 3.5
   // suggests where obstacle regions dominate). duplicate_radius < 0: the option's. Returns how many
   // were added; stops early (returning what it added) when `stop` fires.
+  // With defer_centring, ends that collide are kept in uncentred_ instead of being centred.
   int addMilestones(const std::vector<Eigen::VectorXd>& starts, const std::vector<int>& classes,
-                    const Termination& stop, bool keep_free_starts = false, double duplicate_radius = -1);
+                    const Termination& stop, bool keep_free_starts = false, double duplicate_radius = -1,
+                    bool defer_centring = false);
+  // Centres the deferred ends (centreAlongNormal) and adds those found free as milestones; returns
+  // how many. The roadmap's index is rebuilt when any was added.
+  int centreDeferred();
   // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
   // round added nothing. last_between: the closest pair between the start's and the goal's components
   // of the round before (updated). The trees draw from tree_rng, so the guided samples' draws do not
@@ -153,6 +163,7 @@ class SvmpPlanner final : public Planner {
   std::optional<NearestNeighbors> nn_;
   std::vector<bool> grown_by_trees_;  // roadmap_ nodes the repair's trees added (by index; shorter: no)
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
+  std::vector<std::pair<Eigen::VectorXd, int>> uncentred_;  // deferred descent ends and their classes
 };
 
 }  // namespace svmp::planners

@@ -2,6 +2,7 @@
 // made, provenPath; and SVMP's repair on fastron_panda's random queries.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <regex>
 
 #include "bench/experiments/experiment.hpp"
@@ -108,6 +109,17 @@ TEST(RoadmapQuery, ProvenPathRemovesEdgesTheProofRefusesAndGoesRound) {
   EXPECT_GT(certify_ms, 0.0);
   EXPECT_EQ(checks, 5) << "the sampled pass checks the whole first path, then the detour's three";
 
+  // The eager pass after a failed lazy query does not make again an edge a query removed (0-1 passes
+  // its sampled check), though 1, cut off from 2 here, has 0 as its nearest node in another component.
+  EXPECT_TRUE(milestones.isBlocked(1, 0));
+  Roadmap eager = milestones;
+  eager.dropUnchecked();
+  eager.removeEdge(1, 2);
+  const NearestNeighbors nn(eager.nodes(), w->space.metricScale());
+  connectMilestones(eager, nn, w->context, 4);
+  EXPECT_FALSE(eager.hasEdge(0, 1));
+  EXPECT_TRUE(eager.connected(0, 1)) << "1 joins through another neighbour";
+
   Roadmap cut = milestones;
   cut.removeEdge(3, 4);
   EXPECT_TRUE(provenPath(cut, 0, 2, w->context, nullptr, checks, certify_ms).empty());
@@ -134,23 +146,54 @@ TEST(RoadmapQuery, SvmpAnswersFastronPandasRandomQueriesAllProven) {
   }
 }
 
+// The milestones of an SVMP roadmap as sorted coordinate lists, to compare roadmaps as sets.
+std::vector<std::vector<double>> milestoneSet(const SvmpPlanner& svmp) {
+  std::vector<std::vector<double>> set;
+  for (const auto& q : svmp.roadmap().nodes()) set.emplace_back(q.data(), q.data() + q.size());
+  std::sort(set.begin(), set.end());
+  return set;
+}
+
+// With lazy edges the build's descent ends that collide are centred only when a query first fails
+// on the lazy roadmap: the build holds the free ends, and after that query the roadmap holds the same
+// milestones as a build that centres at once (defer_centring: false), the same seed.
+TEST(RoadmapQuery, SvmpCentresCollidingDescentEndsWhenAQueryFirstNeedsThem) {
+  auto deferred_world = makeWorld(gapScenario(0.002, "  svmp: {repair_rounds: 0}\n"));
+  auto eager_world = makeWorld(gapScenario(0.002, "  svmp: {repair_rounds: 0, defer_centring: false}\n"));
+  auto deferred = deferred_world->planner("svmp"), eager = eager_world->planner("svmp");
+  ASSERT_TRUE(deferred->build(1).solved());
+  ASSERT_TRUE(eager->build(1).solved());
+  const auto& d = dynamic_cast<const SvmpPlanner&>(*deferred);
+  const auto& e = dynamic_cast<const SvmpPlanner&>(*eager);
+  const auto built = milestoneSet(d), all = milestoneSet(e);
+  ASSERT_LT(built.size() + 5, all.size()) << "the gap's walls leave colliding descent ends to centre";
+  EXPECT_TRUE(std::includes(all.begin(), all.end(), built.begin(), built.end()));
+  deferred->query(deferred_world->query(), 1);
+  EXPECT_EQ(milestoneSet(d), all);
+}
+
 // A pair that no path joins (a wall of two overlapping boxes between them): the query fails after its
-// repair rounds, and the roadmap is the one it found. Those rounds' nodes filled both components; kept,
-// they would slow every later query and make the next such pair dearer.
+// repair rounds, and the roadmap is the one it found, with the build's centred descent ends (above).
+// Those rounds' nodes filled both components; kept, they would slow every later query and make the
+// next such pair dearer.
 TEST(RoadmapQuery, SvmpFailedQueryLeavesTheRoadmapAsItFoundIt) {
-  auto w = makeWorld(
+  const std::string world =
       "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
       "obstacles:\n"
       "  - {name: wall_lower, shape: box, size: [0.2, 0.65, 1.0], position: [0.5, 0.225, 0]}\n"
       "  - {name: wall_upper, shape: box, size: [0.2, 0.65, 1.0], position: [0.5, 0.775, 0]}\n"
       "start: [0.1, 0.1]\n"
       "goal: [0.9, 0.9]\n"
-      "resolution: 0.002\n");
+      "resolution: 0.002\n";
+  auto w = makeWorld(world);
   w->certify();
   auto planner = w->planner("svmp");
   const auto& svmp = dynamic_cast<const SvmpPlanner&>(*planner);
   ASSERT_TRUE(planner->build(1).solved());
-  const int nodes = svmp.roadmap().numNodes();
+  auto centred_world = makeWorld(world + "planners:\n  svmp: {defer_centring: false}\n");
+  auto centred = centred_world->planner("svmp");
+  ASSERT_TRUE(centred->build(1).solved());
+  const int nodes = dynamic_cast<const SvmpPlanner&>(*centred).roadmap().numNodes();
   const PlanResult r = planner->query(w->query(), 1);
   ASSERT_FALSE(r.solved());
   std::smatch m;

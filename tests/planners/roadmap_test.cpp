@@ -104,12 +104,18 @@ TEST(Roadmap, CountsEdgesAndClears) {
   EXPECT_EQ(r.numEdges(), 1);
   EXPECT_TRUE(r.connected(0, 1));
   EXPECT_FALSE(r.connected(0, 2));
+  r.addEdge(1, 2, 1.0);
+  r.removeEdge(2, 1);
+  EXPECT_TRUE(r.isBlocked(1, 2)) << "a removed pair is remembered, either way round";
+  EXPECT_FALSE(r.isBlocked(0, 1));
   r.clear();
   EXPECT_EQ(r.numNodes(), 0);
   EXPECT_EQ(r.numEdges(), 0);
   r.addNode(Eigen::Vector2d(0, 0));
   r.addNode(Eigen::Vector2d(1, 0));
   EXPECT_FALSE(r.connected(0, 1)) << "components survived clear()";
+  r.addNode(Eigen::Vector2d(2, 0));
+  EXPECT_FALSE(r.isBlocked(1, 2)) << "blocked pairs survived clear()";
 }
 
 // Lazy edges: unchecked until marked; dropping them keeps checked and certified edges and the
