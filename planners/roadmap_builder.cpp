@@ -93,8 +93,9 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
       return h;
     });
     if (nodes.empty()) return nodes;
-    // One pass over the path's edges not yet `done`: each that passes `test` is marked, each that
-    // fails is removed (from the shared roadmap too). `whole`: the pass goes on after a failure.
+    // One pass over the path's edges not yet `done`: each that passes `test` is marked (by `mark`,
+    // when given), each that fails is removed (from the shared roadmap too). `whole`: the pass goes
+    // on after a failure.
     const auto pass = [&](auto done, auto test, auto mark, bool whole) {
       bool all = true;
       for (size_t i = 0; i + 1 < nodes.size(); ++i) {
@@ -103,19 +104,28 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
         const bool free = test(roadmap.node(u), roadmap.node(v));
         for (Roadmap* r : {&roadmap, u < shared && v < shared ? milestones : nullptr}) {
           if (!r) continue;
-          if (free)
-            (r->*mark)(u, v);
-          else
+          if (!free)
             r->removeEdge(u, v);
+          else if (mark)
+            (r->*mark)(u, v);
         }
         all = all && free;
         if (!all && !whole) return false;
       }
       return all;
     };
-    // Unchecked edges first (cheap, and most failures are there), then the proofs. The check pass
-    // covers the whole path: a sampled check of an edge costs a few collision checks, far less than
-    // the search that each failure would otherwise cost (forest_200: query 9.1 -> 3.9 ms).
+    // Unchecked edges first (cheap, and most failures are there), then the proofs. The check passes
+    // cover the whole path: a sampled check of an edge costs a few collision checks, far less than
+    // the search that each failure would otherwise cost (forest_200: query 9.1 -> 3.9 ms). As LazyPRM
+    // (Bohlin and Kavraki 2000) checks at increasing resolution, each unchecked edge's midpoint comes
+    // first: most failing edges fail there, and the full checks of the edges that pass are not spent
+    // on a path that then fails (Figs 4.4-4.10: 12-23% fewer collision checks).
+    Eigen::VectorXd middle(target.size());
+    constexpr void (Roadmap::*kNoMark)(int, int) = nullptr;
+    const auto middleFree = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+      context.space.interpolate(a, b, 0.5, middle);
+      return context.checker.isValid(middle);
+    };
     const auto check = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       ++checks;
       return context.validator.isValid(a, b);
@@ -124,6 +134,7 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
       return prove(context, a, b, certify_ms);
     };
     const bool disproved =
+        !pass(&Roadmap::isChecked, middleFree, kNoMark, true) ||
         !pass(&Roadmap::isChecked, check, &Roadmap::markChecked, true) ||
         (context.certifier && !pass(&Roadmap::isCertified, certify, &Roadmap::markCertified, false));
     if (!disproved) return nodes;

@@ -63,9 +63,9 @@ struct SvmpOptions {
   double interior_fraction = 0.1;
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
   // With lazy edges, the build's descent ends that collide are centred when a query first fails on
-  // the lazy roadmap, not while building: centring was 2/3 of the milestone phase on Figs 4.4-4.10
-  // and their single queries are answered without those nodes; narrow passages (the gap family)
-  // get them at their first query (docs/reproduction.md, "Centring when a query needs it").
+  // the lazy roadmap, and linked lazily, not while building: centring was 2/3 of the milestone phase
+  // on Figs 4.4-4.10, whose single queries need none of those nodes; narrow passages (the gap
+  // family) get them at their first query (docs/reproduction.md, "Centring when a query needs it").
   bool defer_centring = true;
   bool sample_self_collision = true;  // the self-collision region is one more class
   // "rbf": the thesis' RBF on the weighted joints; "fk": the FK kernel of Das & Yip 2019 (eq. 4), the
