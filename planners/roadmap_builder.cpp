@@ -1,5 +1,8 @@
 #include "planners/roadmap_builder.hpp"
 
+#include <algorithm>
+#include <tuple>
+
 namespace svmp::planners {
 
 namespace {
@@ -75,6 +78,26 @@ bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const Plann
   for (int i = first; i < roadmap.numNodes(); ++i) {
     if (stop()) return false;
     lazy ? linkToNearest(roadmap, nn, context, i, k, search) : connectToNearest(roadmap, nn, context, i, k, search);
+  }
+  return true;
+}
+
+bool connectShortestFirst(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context, int k,
+                          int first, const Termination& stop) {
+  const int search = std::min(nn.size(), 3 * k + 1);
+  std::vector<std::tuple<double, int, int>> pairs;
+  for (int i = first; i < roadmap.numNodes(); ++i)
+    for (int j : nn.nearest(roadmap.node(i), search))
+      if (j != i) pairs.emplace_back(context.space.distance(roadmap.node(i), roadmap.node(j)), std::min(i, j), std::max(i, j));
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<int> tries(roadmap.numNodes(), 0);
+  int since_stop_check = 0;
+  for (const auto& [length, i, j] : pairs) {
+    if (++since_stop_check % 64 == 0 && stop()) return false;
+    if ((tries[i] >= k && tries[j] >= k) || roadmap.connected(i, j)) continue;
+    ++tries[i], ++tries[j];
+    if (!roadmap.isBlocked(i, j)) connect(roadmap, context, i, j, nullptr);
   }
   return true;
 }
