@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
 #include <regex>
 
 #include "bench/experiments/experiment.hpp"
@@ -132,6 +135,73 @@ TEST(RoadmapQuery, ProvenPathRemovesEdgesTheProofRefusesAndGoesRound) {
   cut.removeEdge(3, 4);
   EXPECT_TRUE(provenPath(cut, 0, 2, w->context, nullptr, checks, certify_ms).empty());
   EXPECT_FALSE(cut.connected(0, 2));
+}
+
+// connectShortestFirst against brute force, with every pair a candidate (k above the node count): the
+// edges it makes are a minimum spanning forest of the free pairs, so its components are those of all
+// free pairs and its total length is Prim's over them.
+TEST(RoadmapBuilder, ShortestFirstMakesAMinimumSpanningForestOfTheFreePairs) {
+  auto w = makeWorld(  // a wall across the square, in three parts
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: wall_lower, shape: box, size: [0.2, 0.45, 1.0], position: [0.5, 0.225, 0]}\n"
+      "  - {name: wall_upper, shape: box, size: [0.2, 0.45, 1.0], position: [0.5, 0.775, 0]}\n"
+      "  - {name: island_rim, shape: box, size: [0.2, 0.1, 1.0], position: [0.5, 0.5, 0]}\n"
+      "start: [0.1, 0.1]\n"
+      "goal: [0.9, 0.9]\n"
+      "resolution: 0.01\n" "planners:\n" + kPlanners);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  Roadmap roadmap;
+  while (roadmap.numNodes() < 50) {
+    const Eigen::Vector2d q(unit(rng), unit(rng));
+    if (w->checker.isValid(q)) roadmap.addNode(q);
+  }
+  const int n = roadmap.numNodes();
+  const NearestNeighbors nn(roadmap.nodes(), w->space.metricScale());
+  Roadmap forest = roadmap;
+  ASSERT_TRUE(connectShortestFirst(forest, nn, w->context, n));
+
+  std::vector<std::vector<double>> free(n, std::vector<double>(n, -1));  // length, or -1 when blocked
+  UnionFind all(n);
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      if (w->validator.isValid(roadmap.node(i), roadmap.node(j))) {
+        free[i][j] = free[j][i] = w->space.distance(roadmap.node(i), roadmap.node(j));
+        all.unite(i, j);
+      }
+  // Prim's algorithm in each component of the free pairs.
+  double prim = 0;
+  std::vector<char> in(n, 0);
+  for (int root = 0; root < n; ++root) {
+    if (in[root]) continue;
+    std::vector<double> best(n, std::numeric_limits<double>::infinity());
+    best[root] = 0;
+    for (;;) {
+      int u = -1;
+      for (int v = 0; v < n; ++v)
+        if (!in[v] && std::isfinite(best[v]) && (u < 0 || best[v] < best[u])) u = v;
+      if (u < 0) break;
+      in[u] = 1;
+      prim += best[u];
+      for (int v = 0; v < n; ++v)
+        if (!in[v] && free[u][v] >= 0) best[v] = std::min(best[v], free[u][v]);
+    }
+  }
+  double total = 0;
+  int components = 0;
+  for (int i = 0; i < n; ++i) {
+    components += all.find(i) == i;
+    for (const Edge& e : forest.neighbours(i)) {
+      if (e.to < i) continue;
+      EXPECT_GE(free[i][e.to], 0) << "edge " << i << "-" << e.to << " is blocked";
+      total += e.cost;
+    }
+    for (int j = 0; j < n; ++j) EXPECT_EQ(forest.connected(i, j), all.same(i, j)) << i << ", " << j;
+  }
+  ASSERT_GT(components, 1) << "the wall splits the free pairs";
+  EXPECT_EQ(forest.numEdges(), n - components);
+  EXPECT_NEAR(total, prim, 1e-9);
 }
 
 // fastron_panda's random queries (svmp-plan --queries 100, seed 1) on one roadmap: every query is
