@@ -83,10 +83,10 @@ bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const Plann
 }
 
 bool connectShortestFirst(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context, int k,
-                          int first, const Termination& stop) {
+                          const Termination& stop) {
   const int search = std::min(nn.size(), 3 * k + 1);
   std::vector<std::tuple<double, int, int>> pairs;
-  for (int i = first; i < roadmap.numNodes(); ++i)
+  for (int i = 0; i < nn.size(); ++i)
     for (int j : nn.nearest(roadmap.node(i), search))
       if (j != i) pairs.emplace_back(context.space.distance(roadmap.node(i), roadmap.node(j)), std::min(i, j), std::max(i, j));
   std::sort(pairs.begin(), pairs.end());

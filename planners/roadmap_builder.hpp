@@ -18,14 +18,14 @@ namespace svmp::planners {
 bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
                        int k, int first = 0, const Termination& stop = {}, bool lazy = false);
 
-// connectMilestones (eager) in order of length, as Kruskal's algorithm: each node of [first, numNodes)
-// paired with its 3k + 1 nearest indexed nodes, all pairs shortest first, each checked when its nodes
-// lie in different components and either has tried fewer than k pairs (a pair a query found blocked
-// counts as tried, unchecked). Both build a spanning forest of the pairs found free; in node order a
-// node whose nearest share its component reaches further, and a free edge's check costs its length
-// (SVMP's eager passes: 8-27% fewer collision checks, docs/reproduction.md).
+// connectMilestones (eager) over every indexed node in order of length, as Kruskal's algorithm: each
+// node paired with its 3k + 1 nearest, all pairs shortest first, each checked when its nodes lie in
+// different components and either has tried fewer than k pairs (a pair a query found blocked counts
+// as tried, unchecked). Both build a spanning forest of the pairs found free; in node order a node
+// whose nearest share its component reaches further, and a free edge's check costs its length
+// (SVMP's eager pass after a failed lazy query: up to 30% fewer collision checks, docs/reproduction.md).
 bool connectShortestFirst(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context, int k,
-                          int first = 0, const Termination& stop = {});
+                          const Termination& stop = {});
 
 struct QueryOutcome {
   std::vector<Eigen::VectorXd> path;  // empty when start and goal are not connected

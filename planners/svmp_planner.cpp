@@ -444,7 +444,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       }
     }
     if (round == 0 && roadmap_.dropUnchecked() > 0) {
-      connectShortestFirst(roadmap_, *nn_, context_, options_.k, 0, stop);
+      connectShortestFirst(roadmap_, *nn_, context_, options_.k, stop);
       --round;
       continue;
     }

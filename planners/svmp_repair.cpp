@@ -180,7 +180,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     if (trees.added > 0) {
       added += trees.added;
       nn_.emplace(roadmap_.nodes(), scale);
-      connectShortestFirst(roadmap_, *nn_, context_, options_.k, first, stop);
+      connectMilestones(roadmap_, *nn_, context_, options_.k, first, stop);
     }
   };
   const bool trees = options_.repair_trees && start_root >= 0 && !goal_side.empty();
@@ -214,7 +214,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
                          std::min(options_.duplicate_radius, 0.25 * narrowest));
   if (roadmap_.numNodes() > guided_begin) {
     nn_.emplace(roadmap_.nodes(), scale);
-    connectShortestFirst(roadmap_, *nn_, context_, options_.k, guided_begin, stop);
+    connectMilestones(roadmap_, *nn_, context_, options_.k, guided_begin, stop);
   }
   // Where the guided nodes did not join the two, the trees.
   if (trees && !trees_first && !stop() && !joined()) growTrees();
