@@ -1,6 +1,7 @@
 // Hot paths of the planners: obstacle sampling (thesis Algorithm 1), milestone descent on the risk
 // function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric,
-// and one query on a built SVMP roadmap (many queries, `svmp-plan --queries`).
+// one query on a built SVMP roadmap (many queries, `svmp-plan --queries`), and the eager pass that
+// connects a roadmap's milestones (node order, as the thesis, or shortest pairs first).
 // The world is thesis Fig 3.7 (bench/scenarios/thesis_fig3_7.yaml) or the 5-DoF arm of Fig 4.4; the
 // queries run on svpp_3d20_01 (a point among 20 boxes) and fastron_panda (the Panda).
 #include <benchmark/benchmark.h>
@@ -149,6 +150,42 @@ void BM_RoadmapQuery(benchmark::State& state) {
   state.SetLabel(file.substr(0, file.size() - 5));
 }
 BENCHMARK(BM_RoadmapQuery)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The eager pass over Fig 4.4's SVMP milestones (the file's parameters, seed 1, after its first query
+// centred the deferred ones): the thesis' MakeRoadmap in node order (connectMilestones, arg 0) or
+// shortest pairs first (connectShortestFirst, arg 1, what SVMP runs after a failed lazy query), on a
+// copy of the nodes without edges each iteration.
+void BM_EagerPass(benchmark::State& state) {
+  const cspace::Scenario scenario = cspace::loadScenario(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig4_4.yaml");
+  const cspace::ConfigurationSpace space = scenario.makeSpace();
+  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
+  const cspace::DiscreteMotionValidator validator(checker, space, scenario.resolution);
+  planners::PlanningContext context{space, checker, validator, 1};
+  planners::SvmpPlanner svmp(context, planners::SvmpOptions::fromParameters(scenario.paramsFor("svmp")));
+  if (!svmp.build(1).solved()) {
+    state.SkipWithError("svmp build failed");
+    return;
+  }
+  svmp.query(scenario.queries.front(), 1);
+  planners::Roadmap nodes;
+  for (const auto& q : svmp.roadmap().nodes()) nodes.addNode(q);
+  const planners::NearestNeighbors nn(nodes.nodes(), space.metricScale());
+  const int k = svmp.options().k;
+  const bool shortest_first = state.range(0) == 1;
+  planners::Roadmap roadmap;
+  const std::uint64_t calls_before = validator.calls();
+  for (auto _ : state) {
+    roadmap = nodes;
+    shortest_first ? planners::connectShortestFirst(roadmap, nn, context, k)
+                   : planners::connectMilestones(roadmap, nn, context, k);
+    benchmark::DoNotOptimize(roadmap);
+  }
+  state.counters["motions"] = static_cast<double>(validator.calls() - calls_before) / static_cast<double>(state.iterations());
+  state.counters["edges"] = roadmap.numEdges();
+  state.counters["milestones"] = nodes.numNodes();
+  state.SetLabel(shortest_first ? "shortest first" : "node order");
+}
+BENCHMARK(BM_EagerPass)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace svmp
