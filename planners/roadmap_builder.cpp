@@ -102,6 +102,8 @@ bool connectShortestFirst(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
   return true;
 }
 
+constexpr int kScreenLevels = 2;  // provenPath's cheap passes: the midpoint, then the quarter points
+
 std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningContext& context, Roadmap* milestones,
                             int& checks, double& certify_ms) {
   const int shared = milestones ? milestones->numNodes() : 0;
@@ -140,14 +142,21 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
     // Unchecked edges first (cheap, and most failures are there), then the proofs. The check passes
     // cover the whole path: a sampled check of an edge costs a few collision checks, far less than
     // the search that each failure would otherwise cost (forest_200: query 9.1 -> 3.9 ms). As LazyPRM
-    // (Bohlin and Kavraki 2000) checks at increasing resolution, each unchecked edge's midpoint comes
-    // first: most failing edges fail there, and the full checks of the edges that pass are not spent
-    // on a path that then fails (Figs 4.4-4.10: 12-23% fewer collision checks).
-    Eigen::VectorXd middle(target.size());
+    // (Bohlin and Kavraki 2000) checks at increasing resolution, every unchecked edge's midpoint
+    // comes first, then its quarter points (kScreenLevels bisection levels), then the full check:
+    // most failing edges fail early, and the full checks of the edges that pass are not spent on a
+    // path that then fails (Figs 4.4-4.10: 12-23% fewer collision checks with the midpoint, Fig 4.6
+    // 18% fewer again with the quarters; a third level gained no more elsewhere).
+    Eigen::VectorXd point(target.size());
     constexpr void (Roadmap::*kNoMark)(int, int) = nullptr;
-    const auto middleFree = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-      context.space.interpolate(a, b, 0.5, middle);
-      return context.checker.isValid(middle);
+    int level = 1;  // the points of a bisection level: odd multiples of 2^-level
+    const auto levelFree = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+      const int parts = 1 << level;
+      for (int i = 1; i < parts; i += 2) {
+        context.space.interpolate(a, b, static_cast<double>(i) / parts, point);
+        if (!context.checker.isValid(point)) return false;
+      }
+      return true;
     };
     const auto check = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       ++checks;
@@ -156,8 +165,11 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
     const auto certify = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       return prove(context, a, b, certify_ms);
     };
+    bool screened = true;
+    for (level = 1; level <= kScreenLevels && screened; ++level)
+      screened = pass(&Roadmap::isChecked, levelFree, kNoMark, true);
     const bool disproved =
-        !pass(&Roadmap::isChecked, middleFree, kNoMark, true) ||
+        !screened ||
         !pass(&Roadmap::isChecked, check, &Roadmap::markChecked, true) ||
         (context.certifier && !pass(&Roadmap::isCertified, certify, &Roadmap::markCertified, false));
     if (!disproved) return nodes;
