@@ -112,13 +112,17 @@ TEST(RoadmapQuery, ProvenPathRemovesEdgesTheProofRefusesAndGoesRound) {
   EXPECT_GT(certify_ms, 0.0);
   EXPECT_EQ(checks, 5) << "the sampled pass checks the whole first path, then the detour's three";
 
-  // Moved to (0.6, 0.5), node 1's edge from 0 has its middle in the wall: the midpoint pass removes
-  // it before any edge's full check, so only the detour's three are checked.
-  Roadmap screened = planarRoadmap(w->space, {{0.5, 0.5}, {0.6, 0.5}, {0.9, 0.9}, {0.5, 0.7}, {0.6, 0.7}},
-                                   {{0, 1}, {1, 2}, {0, 3}, {3, 4}, {4, 2}}, false);
-  int screened_checks = 0;
-  EXPECT_EQ(provenPath(screened, 0, 2, w->context, nullptr, screened_checks, certify_ms), path);
-  EXPECT_EQ(screened_checks, 3);
+  // Moved to (0.6, 0.5), node 1's edge from 0 has its middle in the wall; moved to (0.7, 0.5), its
+  // quarter point. The screening passes remove it before any edge's full check (which it would pass,
+  // at resolution 0.1), so only the detour's three are checked.
+  for (const double x : {0.6, 0.7}) {
+    Roadmap screened = planarRoadmap(w->space, {{0.5, 0.5}, {x, 0.5}, {0.9, 0.9}, {0.5, 0.7}, {0.6, 0.7}},
+                                     {{0, 1}, {1, 2}, {0, 3}, {3, 4}, {4, 2}}, false);
+    ASSERT_TRUE(w->validator.isValid(screened.node(0), screened.node(1)));
+    int screened_checks = 0;
+    EXPECT_EQ(provenPath(screened, 0, 2, w->context, nullptr, screened_checks, certify_ms), path) << x;
+    EXPECT_EQ(screened_checks, 3) << x;
+  }
 
   // The eager pass after a failed lazy query does not make again an edge a query removed (0-1 passes
   // its sampled check), though 1, cut off from 2 here, has 0 as its nearest node in another component.
