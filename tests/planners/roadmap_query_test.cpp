@@ -22,6 +22,18 @@ using test::planarRoadmap;
 
 const std::string kPlanners = "  prm: {samples: 100, k: 5}\n";
 
+// A point robot in the unit square and a wall x in [0.4, 0.6] across it, of two overlapping boxes:
+// no path joins its two sides.
+std::string closedWall(double resolution) {
+  return "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+         "obstacles:\n"
+         "  - {name: wall_lower, shape: box, size: [0.2, 0.65, 1.0], position: [0.5, 0.225, 0]}\n"
+         "  - {name: wall_upper, shape: box, size: [0.2, 0.65, 1.0], position: [0.5, 0.775, 0]}\n"
+         "start: [0.1, 0.1]\n"
+         "goal: [0.9, 0.9]\n"
+         "resolution: " + std::to_string(resolution) + "\n";
+}
+
 // A point robot in the unit square with one wall 0.01 thick at x = 0.55, y in [0.4, 0.6], checked at
 // resolution 0.1: a segment crossing the wall between two checks passes the sampled validator, and
 // only the proof refuses it.
@@ -145,15 +157,7 @@ TEST(RoadmapQuery, ProvenPathRemovesEdgesTheProofRefusesAndGoesRound) {
 // edges it makes are a minimum spanning forest of the free pairs, so its components are those of all
 // free pairs and its total length is Prim's over them.
 TEST(RoadmapBuilder, ShortestFirstMakesAMinimumSpanningForestOfTheFreePairs) {
-  auto w = makeWorld(  // a wall across the square, in three parts
-      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
-      "obstacles:\n"
-      "  - {name: wall_lower, shape: box, size: [0.2, 0.45, 1.0], position: [0.5, 0.225, 0]}\n"
-      "  - {name: wall_upper, shape: box, size: [0.2, 0.45, 1.0], position: [0.5, 0.775, 0]}\n"
-      "  - {name: island_rim, shape: box, size: [0.2, 0.1, 1.0], position: [0.5, 0.5, 0]}\n"
-      "start: [0.1, 0.1]\n"
-      "goal: [0.9, 0.9]\n"
-      "resolution: 0.01\n" "planners:\n" + kPlanners);
+  auto w = makeWorld(closedWall(0.01) + "planners:\n" + kPlanners);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(0, 1);
   Roadmap roadmap;
@@ -254,19 +258,12 @@ TEST(RoadmapQuery, SvmpCentresCollidingDescentEndsWhenAQueryFirstNeedsThem) {
   EXPECT_EQ(milestoneSet(d), all);
 }
 
-// A pair that no path joins (a wall of two overlapping boxes between them): the query fails after its
+// A pair that no path joins (closedWall): the query fails after its
 // repair rounds, and the roadmap is the one it found, with the build's centred descent ends (above).
 // Those rounds' nodes filled both components; kept, they would slow every later query and make the
 // next such pair dearer.
 TEST(RoadmapQuery, SvmpFailedQueryLeavesTheRoadmapAsItFoundIt) {
-  const std::string world =
-      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
-      "obstacles:\n"
-      "  - {name: wall_lower, shape: box, size: [0.2, 0.65, 1.0], position: [0.5, 0.225, 0]}\n"
-      "  - {name: wall_upper, shape: box, size: [0.2, 0.65, 1.0], position: [0.5, 0.775, 0]}\n"
-      "start: [0.1, 0.1]\n"
-      "goal: [0.9, 0.9]\n"
-      "resolution: 0.002\n";
+  const std::string world = closedWall(0.002);
   auto w = makeWorld(world);
   w->certify();
   auto planner = w->planner("svmp");
