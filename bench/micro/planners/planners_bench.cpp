@@ -115,20 +115,40 @@ BENCHMARK(BM_NearestNeighbors)->Arg(1000)->Arg(10000);
 // assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers in turn the 100
 // valid start-goal pairs of `svmp-plan --queries 100 --seed 1`, every path proven (no repair: the
 // roadmap stays the same).
+// A scenario file of bench/scenarios and SVMP on it with the file's parameters, built with seed 1
+// (`built` false when the build failed); paths proven when `certify`.
+struct BuiltSvmp {
+  cspace::Scenario scenario;
+  cspace::ConfigurationSpace space;
+  cspace::CollisionChecker checker;
+  cspace::DiscreteMotionValidator validator;
+  cspace::CertifiedMotionValidator certifier;
+  planners::PlanningContext context;
+  planners::SvmpPlanner svmp;
+  bool built;
+
+  BuiltSvmp(const std::string& file, bool certify)
+      : scenario(cspace::loadScenario(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + file)),
+        space(scenario.makeSpace()),
+        checker(scenario.robot, scenario.environment, scenario.self_collision),
+        validator(checker, space, scenario.resolution),
+        certifier(checker, space, scenario.resolution),
+        context{space, checker, validator, 1, certify ? &certifier : nullptr},
+        svmp(context, planners::SvmpOptions::fromParameters(scenario.paramsFor("svmp"))),
+        built(svmp.build(1).solved()) {}
+};
+
 void BM_RoadmapQuery(benchmark::State& state) {
   const std::string file = state.range(0) == 0 ? "svpp_3d20_01.yaml" : "fastron_panda.yaml";
-  const cspace::Scenario scenario = cspace::loadScenario(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + file);
-  const cspace::ConfigurationSpace space = scenario.makeSpace();
-  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
-  const cspace::DiscreteMotionValidator validator(checker, space, scenario.resolution);
-  const cspace::CertifiedMotionValidator certifier(checker, space, scenario.resolution);
-  planners::PlanningContext context{space, checker, validator, 1};
-  context.certifier = &certifier;
-  planners::SvmpPlanner svmp(context, planners::SvmpOptions::fromParameters(scenario.paramsFor("svmp")));
-  if (!svmp.build(1).solved()) {
+  BuiltSvmp world(file, true);
+  if (!world.built) {
     state.SkipWithError("svmp build failed");
     return;
   }
+  const cspace::Scenario& scenario = world.scenario;
+  const cspace::ConfigurationSpace& space = world.space;
+  const planners::PlanningContext& context = world.context;
+  const planners::SvmpPlanner& svmp = world.svmp;
   const planners::Roadmap& roadmap = svmp.roadmap();
   const planners::NearestNeighbors nn(roadmap.nodes(), space.metricScale());
   const std::vector<cspace::Query> queries = experiments::randomQueries(scenario, 100, 1);
@@ -156,17 +176,16 @@ BENCHMARK(BM_RoadmapQuery)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 // shortest pairs first (connectShortestFirst, arg 1, what SVMP runs after a failed lazy query), on a
 // copy of the nodes without edges each iteration.
 void BM_EagerPass(benchmark::State& state) {
-  const cspace::Scenario scenario = cspace::loadScenario(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig4_4.yaml");
-  const cspace::ConfigurationSpace space = scenario.makeSpace();
-  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
-  const cspace::DiscreteMotionValidator validator(checker, space, scenario.resolution);
-  planners::PlanningContext context{space, checker, validator, 1};
-  planners::SvmpPlanner svmp(context, planners::SvmpOptions::fromParameters(scenario.paramsFor("svmp")));
-  if (!svmp.build(1).solved()) {
+  BuiltSvmp world("thesis_fig4_4.yaml", false);
+  if (!world.built) {
     state.SkipWithError("svmp build failed");
     return;
   }
-  svmp.query(scenario.queries.front(), 1);
+  planners::SvmpPlanner& svmp = world.svmp;
+  const cspace::ConfigurationSpace& space = world.space;
+  const cspace::DiscreteMotionValidator& validator = world.validator;
+  const planners::PlanningContext& context = world.context;
+  svmp.query(world.scenario.queries.front(), 1);
   planners::Roadmap nodes;
   for (const auto& q : svmp.roadmap().nodes()) nodes.addNode(q);
   const planners::NearestNeighbors nn(nodes.nodes(), space.metricScale());
