@@ -44,6 +44,12 @@ int nearestNode(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd&
   return best;
 }
 
+// No configuration touches it (robots::Robot::mayReach): a root search would spend
+// max_root_attempts draws finding nothing (an obstacle beyond an arm's reach: 200k checks).
+bool outOfReach(const ValidityChecker& checker, const Obstacle& obstacle) {
+  return obstacle.id > 0 && !obstacle.root_sample && !checker.robot().mayReach(obstacle.shape.bounds());
+}
+
 // Roots for the targets without a scenario sample from one shared stream of uniform draws: check()
 // names the (lowest) obstacle a draw hits, so one draw serves whichever target it lands in, where a
 // search per target spends about 1/p draws on each (forest_200: 200 boxes of 0.09% of the space
@@ -56,7 +62,7 @@ std::vector<std::optional<Eigen::VectorXd>> findRoots(const ValidityChecker& che
   std::vector<std::optional<Eigen::VectorXd>> roots(targets.size());
   std::map<int, size_t> wanted;  // obstacle id -> target index
   for (size_t t = 0; t < targets.size(); ++t)
-    if (!targets[t]->root_sample) wanted[targets[t]->id] = t;
+    if (!targets[t]->root_sample && !outOfReach(checker, *targets[t])) wanted[targets[t]->id] = t;
   if (wanted.size() < 2) return roots;  // nothing to share
   Rng rng(seed ^ 0x0B57AC1E5EEDULL);
   Eigen::VectorXd q(space.dim());
@@ -87,6 +93,9 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
       tree.warning = "obstacle '" + obstacle.name + "': the scenario's sample does not hit it";
       return tree;
     }
+  } else if (outOfReach(checker, obstacle)) {
+    tree.warning = "obstacle '" + obstacle.name + "': beyond the robot's reach, not sampled";
+    return tree;
   } else {
     Eigen::VectorXd q(space.dim());
     bool found = false;

@@ -20,6 +20,14 @@ void PointRobot::linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& po
   poses[0].translation().head(q.size()) = q;
 }
 
+bool PointRobot::mayReach(const Eigen::AlignedBox3d& box) const {
+  Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();
+  low.head(dof()) = lowerLimits();
+  high.head(dof()) = upperLimits();
+  const Eigen::Vector3d grow = Eigen::Vector3d::Constant(radius_);
+  return box.intersects(Eigen::AlignedBox3d(low - grow, high + grow));
+}
+
 void PointRobot::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q,
                                Eigen::Matrix3Xd& points) const {
   points.setZero(3, 1);

@@ -12,6 +12,8 @@ class PointRobot final : public Robot {
   void linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const override;
   void controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Matrix3Xd& points) const override;
   int numControlPoints() const override { return 1; }
+  // Whether the box meets the bounds (z = 0 in 2-D) grown by the radius.
+  bool mayReach(const Eigen::AlignedBox3d& box) const override;
   // Exact: the robot translates by b - a.
   double displacementBound(const Eigen::Ref<const Eigen::VectorXd>& a,
                            const Eigen::Ref<const Eigen::VectorXd>& b) const override {

@@ -68,6 +68,13 @@ void Robot::setChainReach(const std::vector<double>& origin_offset) {
   joint_reach_ = link_reach_.colwise().maxCoeff().transpose();
 }
 
+bool Robot::mayReach(const Eigen::AlignedBox3d& box) const {
+  if (joint_reach_.size() != dof()) return true;
+  Poses poses;
+  linkPoses(lower_, poses);
+  return box.exteriorDistance(poses[0].translation()) <= joint_reach_[0];
+}
+
 void Robot::checkConfiguration(const Eigen::Ref<const Eigen::VectorXd>& q, const char* where) const {
   if (q.size() != dof()) {
     std::ostringstream err;

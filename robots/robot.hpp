@@ -52,6 +52,10 @@ class Robot {
   void linkDisplacementBounds(const Eigen::Ref<const Eigen::VectorXd>& a,
                               const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::VectorXd& bounds) const;
   const Eigen::VectorXd& jointReach() const { return joint_reach_; }
+  // False only when no configuration brings any point of the robot into `box` (world frame): for a
+  // chain, when the box lies beyond jointReach()[0] of the first joint's origin, which no joint moves;
+  // true when the robot gives no bound. Obstacle sampling skips the obstacles no configuration touches.
+  virtual bool mayReach(const Eigen::AlignedBox3d& box) const;
 
   // Throws std::invalid_argument naming the problem when q has the wrong size or is not finite.
   void checkConfiguration(const Eigen::Ref<const Eigen::VectorXd>& q, const char* where) const;

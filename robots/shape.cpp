@@ -46,6 +46,18 @@ double Shape::reach() const {
   return pose.translation().norm() + extent;
 }
 
+Eigen::AlignedBox3d Shape::bounds() const {
+  const Eigen::Matrix3d rotation = pose.linear().cwiseAbs();
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+  switch (kind) {
+    case ShapeKind::kBox: half = rotation * (0.5 * dims); break;
+    case ShapeKind::kSphere: half.setConstant(dims.x()); break;
+    case ShapeKind::kCylinder: half = rotation * Eigen::Vector3d(dims.x(), dims.x(), 0.5 * dims.y()); break;
+    case ShapeKind::kCapsule: half = rotation.col(2) * (0.5 * dims.y()) + Eigen::Vector3d::Constant(dims.x()); break;
+  }
+  return {pose.translation() - half, pose.translation() + half};
+}
+
 const char* shapeKindName(ShapeKind kind) {
   switch (kind) {
     case ShapeKind::kBox: return "box";

@@ -31,6 +31,9 @@ struct Shape {
   bool contains(const Eigen::Vector3d& p) const;
   // The largest distance from the origin of the frame the shape is attached to, to any of its points.
   double reach() const;
+  // An axis-aligned box holding the shape, in the frame it is attached to (not the tightest for a
+  // rotated cylinder: its bounding box's).
+  Eigen::AlignedBox3d bounds() const;
 };
 
 const char* shapeKindName(ShapeKind kind);

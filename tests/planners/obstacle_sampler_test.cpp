@@ -171,6 +171,34 @@ TEST(ObstacleSampler, RootsOfManySmallObstaclesComeFromOneSharedSearch) {
   EXPECT_LT(checks, 12000u) << "roots searched obstacle by obstacle";
 }
 
+// A 2-link arm (reach 1.8 + the links' half width from its base) with a box beyond its reach, one
+// just within it and one near the base: the far box costs no root search (before: 200k uniform
+// draws, a warning and no samples) and is named in a warning; the box a link's corner can just touch
+// is still found and sampled.
+TEST(ObstacleSampler, ObstacleBeyondTheArmsReachIsSkippedWithoutSearching) {
+  auto w = makeWorld(
+      "robot: {type: planar_arm, lengths: [1.0, 0.8], widths: 0.05, limits: {lower: [-pi, -2.5], upper: [pi, 2.5]}}\n"
+      "obstacles:\n"
+      "  - {name: near, shape: box, size: [0.2, 0.2, 1], position: [0.6, 0.6, 0]}\n"
+      "  - {name: rim, shape: box, size: [0.2, 0.2, 1], position: [1.85, 0, 0]}\n"
+      "  - {name: far, shape: box, size: [0.2, 0.2, 1], position: [2.0, 0, 0]}\n"
+      "start: [0, 0.5]\ngoal: [3, 0.5]\nresolution: 0.01\n");
+  planners::ObstacleSamplerOptions opt;
+  opt.step = 0.05;
+  opt.samples_per_tree = 30;
+  const std::uint64_t before = w->checker.collisionChecks();
+  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 31, 1);
+  const std::uint64_t checks = w->checker.collisionChecks() - before;
+  ASSERT_EQ(s.tree_sizes.size(), 3u);
+  EXPECT_GT(s.tree_sizes[0], 0);
+  EXPECT_GT(s.tree_sizes[1], 0) << "the rim box is within reach";
+  EXPECT_EQ(s.tree_sizes[2], 0);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("'far': beyond the robot's reach"), std::string::npos) << s.warnings[0];
+  EXPECT_LT(checks, 50000u);
+  for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i])) << i;
+}
+
 TEST(ObstacleSampler, SameSeedGivesSameSamplesWithOneAndTwoThreads) {
   auto w = makeWorld(kThreeObstacles);
   const auto opt = samplerOptions();

@@ -268,6 +268,54 @@ TEST(DhArmTest, ClosedFormControlPointsMatchTheIsometryChain) {
   }
 }
 
+// mayReach must never rule out a box the robot can touch: at random configurations every link
+// shape's own box is reachable, and so is every point of the shapes drawn; a point 5% beyond the
+// bound is not, and the bound is not far looser than the farthest point drawn. A point robot
+// reaches what meets its bounds grown by its radius.
+TEST(RobotTest, MayReachHoldsEveryConfigurationsShapesAndNothingFarBeyond) {
+  DhArmSpec panda = pandaSpec();
+  panda.base = Eigen::Translation3d(0.1, -0.2, 0.3) * Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+  panda.tool = {Shape::box(Eigen::Vector3d(0.08, 0.2, 0.06), Eigen::Isometry3d(Eigen::Translation3d(0, 0.01, 0.05)))};
+  const DhArm crs3(crsF3Spec(3)), crs6(crsF3Spec(6)), arm_panda(panda);
+  const PlanarArm planar = threeLinkArm();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const Robot* robot : std::initializer_list<const Robot*>{&crs3, &crs6, &arm_panda, &planar}) {
+    Poses poses;
+    robot->linkPoses(robot->lowerLimits(), poses);
+    const Eigen::Vector3d origin = poses[0].translation();
+    const auto tiny = [](const Eigen::Vector3d& p) { return Eigen::AlignedBox3d(p, p); };
+    double farthest = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+      Eigen::VectorXd q(robot->dof());
+      for (int k = 0; k < q.size(); ++k)
+        q[k] = std::uniform_real_distribution<double>(robot->lowerLimits()[k], robot->upperLimits()[k])(rng);
+      robot->linkPoses(q, poses);
+      for (int link = 0; link < robot->numLinks(); ++link)
+        for (Shape shape : robot->linkShapes(link)) {
+          shape.pose = poses[link] * shape.pose;
+          const Eigen::AlignedBox3d box = shape.bounds();
+          ASSERT_TRUE(robot->mayReach(box)) << robot->name() << " link " << link;
+          for (int i = 0; i < 20; ++i) {  // points of the shape, drawn in its box
+            const Eigen::Vector3d p = box.min() + box.sizes().cwiseProduct(Eigen::Vector3d(
+                                                      unit(rng), unit(rng), unit(rng)));
+            if (!shape.contains(p)) continue;
+            farthest = std::max(farthest, (p - origin).norm());
+            ASSERT_TRUE(robot->mayReach(tiny(p))) << robot->name() << " link " << link << " at " << p.transpose();
+          }
+        }
+    }
+    ASSERT_GT(farthest, 0) << robot->name();
+    const Eigen::Vector3d out = origin + 1.05 * robot->jointReach()[0] * Eigen::Vector3d(1, 1, 0).normalized();
+    EXPECT_FALSE(robot->mayReach(tiny(out))) << robot->name();
+    EXPECT_LT(robot->jointReach()[0], 1.25 * farthest) << robot->name() << ": bound far looser than the robot";
+  }
+  const PointRobot point(vec({0, 0}), vec({1, 2}), 0.1);
+  EXPECT_TRUE(point.mayReach(Eigen::AlignedBox3d(Eigen::Vector3d(1.05, 1, -1), Eigen::Vector3d(2, 3, 1))));
+  EXPECT_FALSE(point.mayReach(Eigen::AlignedBox3d(Eigen::Vector3d(1.15, 1, -1), Eigen::Vector3d(2, 3, 1))));
+  EXPECT_FALSE(point.mayReach(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0.2), Eigen::Vector3d(1, 1, 1))));
+}
+
 TEST(RobotTest, LimitsAndConfigurationChecks) {
   const PlanarArm arm = threeLinkArm();
   EXPECT_TRUE(arm.withinLimits(vec({kPi, -kPi, 0})));

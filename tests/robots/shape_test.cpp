@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 
 #include "robots/shape.hpp"
 
@@ -92,6 +93,32 @@ TEST(ShapeTest, ValidateNamesTheBadDimension) {
   Shape bad_pose = Shape::sphere(1);
   bad_pose.pose.translation().x() = nan;
   EXPECT_NE(bad_pose.validate().find("pose is not finite"), std::string::npos);
+}
+
+// bounds() holds every point contains() accepts, for each kind under a random rotation, and is exact
+// for a box along the axes.
+TEST(ShapeTest, BoundsHoldTheShape) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(0.3, -0.2, 0.5));
+  pose.rotate(Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()));
+  for (const Shape& shape : {Shape::box(Eigen::Vector3d(0.4, 0.1, 0.2), pose), Shape::sphere(0.3, pose),
+                             Shape::cylinder(0.1, 0.6, pose), Shape::capsule(0.1, 0.6, pose)}) {
+    const Eigen::AlignedBox3d box = shape.bounds();
+    const double extent = shape.reach() - pose.translation().norm();  // the ball about its centre
+    int inside = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const Eigen::Vector3d p = pose.translation() + extent * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+      if (!shape.contains(p)) continue;
+      ++inside;
+      ASSERT_TRUE(box.contains(p)) << shapeKindName(shape.kind) << " point " << p.transpose();
+    }
+    EXPECT_GT(inside, 100) << shapeKindName(shape.kind);
+  }
+  const Eigen::AlignedBox3d exact = Shape::box(Eigen::Vector3d(2, 4, 6), translated(1, 0, 0)).bounds();
+  EXPECT_LT((exact.min() - Eigen::Vector3d(0, -2, -3)).norm(), kEps);
+  EXPECT_LT((exact.max() - Eigen::Vector3d(2, 2, 3)).norm(), kEps);
 }
 
 }  // namespace
