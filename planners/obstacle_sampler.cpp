@@ -208,6 +208,7 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
   for (size_t t = 0; t < trees.size(); ++t) {
     samples.tree_sizes.push_back(static_cast<int>(trees[t].nodes.size()));
     if (!trees[t].warning.empty()) samples.warnings.push_back(trees[t].warning);
+    if (!trees[t].warning.empty() && trees[t].nodes.empty()) samples.unsampled.push_back(trees[t].warning);
     samples.stopped |= trees[t].stopped;
     for (size_t i = 0; i < trees[t].nodes.size(); ++i) {
       samples.points.col(column++) = trees[t].nodes[i];

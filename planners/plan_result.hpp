@@ -53,6 +53,9 @@ struct PlanResult {
   std::uint64_t roadmap_edges = 0;
   std::uint64_t support_vectors = 0;
   PhaseTimes times;
+  // What the planner left out of its input, for the user to see (SVMP: obstacles it has no sample
+  // of, and why: beyond the robot's reach, no configuration found hitting them).
+  std::vector<std::string> warnings;
   bool solved() const { return status == PlanStatus::kSolved; }
 };
 
@@ -64,6 +67,7 @@ inline void addBuild(const PlanResult& build, PlanResult& query) {
   query.distance_queries += build.distance_queries;
   query.certified_segments += build.certified_segments;
   query.times += build.times;
+  query.warnings.insert(query.warnings.begin(), build.warnings.begin(), build.warnings.end());
 }
 
 }  // namespace svmp::planners

@@ -379,6 +379,7 @@ void SvmpPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, Plan
   result.status = PlanStatus::kTimeout;
   result.message = "time limit reached while sampling obstacles";
   if (sampleObstacle(seed, times, stop)) {
+    result.warnings = samples_.unsampled;
     result.message = trainMultiSvm(times);
     if (!result.message.empty()) {
       result.status = PlanStatus::kInvalidInput;

@@ -30,6 +30,7 @@ struct Scenario {
 
 struct Plan {
   std::string planner, status, message;
+  std::vector<std::string> warnings;
   std::uint64_t seed = 0;
   bool solved = false, certified = false;
   py::array_t<double> path;
@@ -83,6 +84,7 @@ Plan plan(const Scenario& s, const std::string& planner, long long seed, const p
   out.planner = planner;
   out.status = planners::planStatusName(r.status);
   out.message = r.message;
+  out.warnings = r.warnings;
   out.seed = static_cast<std::uint64_t>(seed);
   out.solved = r.solved();
   out.certified = r.certified;
@@ -140,6 +142,7 @@ void bindPlanning(py::module_& m) {
       .def_readonly("seed", &Plan::seed)
       .def_readonly("status", &Plan::status, "solved, failed, timeout, invalid_start, invalid_goal, ...")
       .def_readonly("message", &Plan::message, "why, when not solved")
+      .def_readonly("warnings", &Plan::warnings, "what the planner left out of its input (obstacles not sampled, why)")
       .def_readonly("solved", &Plan::solved, "solved and certified collision-free")
       .def_readonly("certified", &Plan::certified)
       .def_readonly("path", &Plan::path, "(n, dof) waypoints, start to goal; empty when not solved")

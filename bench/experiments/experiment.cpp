@@ -264,6 +264,8 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
             << ": " << planners::planStatusName(record.result.status) << ", " << record.result.collision_checks
             << " checks, " << std::fixed << std::setprecision(1) << record.time_ms << " ms"
             << (record.result.message.empty() ? "" : " (" + record.result.message + ")") << "\n";
+        if (r == 0 && i == 0)  // the same scenario gives every run the same warnings
+          for (const std::string& w : record.result.warnings) log << "  " << runs.planner << " warning: " << w << "\n";
         runs.runs.push_back(std::move(record));
         if (queries.size() > 1 && !planner.built()) break;  // the build failed: no query can be answered
       }

@@ -48,6 +48,7 @@ RunRecord recordFromJson(const json& j, const std::string& where) {
   r.query = get<int>(j, "query", where);
   p.status = statusFromName(get<std::string>(j, "status", where), where + ".status");
   p.message = get<std::string>(j, "message", where);
+  if (j.contains("warnings")) p.warnings = get<std::vector<std::string>>(j, "warnings", where);  // older files: none
   p.certified = get<bool>(j, "certified", where);
   p.certified_segments = get<std::uint64_t>(j, "certified_segments", where);
   p.collision_checks = get<std::uint64_t>(j, "collision_checks", where);
@@ -176,6 +177,7 @@ std::string runRecordJson(const RunRecord& record) {
                   {"query", record.query},
                   {"status", planners::planStatusName(p.status)},
                   {"message", p.message},
+                  {"warnings", p.warnings},
                   {"certified", p.certified},
                   {"certified_segments", p.certified_segments},
                   {"collision_checks", p.collision_checks},

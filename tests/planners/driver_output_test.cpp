@@ -92,6 +92,37 @@ TEST(DriverOutput, PathsAndResultsParseBackWithTheSameValues) {
   fs::remove_all(dir);
 }
 
+// An obstacle SVMP has no sample of is told: in the run's warnings, once in the log, and in the JSON.
+TEST(DriverOutput, ObstaclesLeftUnsampledAreWarnedAbout) {
+  Experiment run{cspace::parseScenario(
+                     "robot: {type: planar_arm, lengths: [1.0, 0.8], widths: 0.05, limits: {lower: [-pi, -2.5], upper: [pi, 2.5]}}\n"
+                     "obstacles:\n"
+                     "  - {name: near, shape: box, size: [0.2, 0.2, 1], position: [0.6, 0.6, 0]}\n"
+                     "  - {name: rim, shape: box, size: [0.2, 0.2, 1], position: [1.4, -0.4, 0]}\n"
+                     "  - {name: far, shape: box, size: [0.2, 0.2, 1], position: [2.5, 0, 0]}\n"
+                     "start: [0, 0]\ngoal: [2.5, 0]\nresolution: 0.01\n",
+                     "unsampled.yaml"),
+                 {}, {}};
+  run.options.planners = {"svmp"};
+  run.options.runs = 2;
+  std::ostringstream log;
+  run.results = runExperiment(run.scenario, run.options, log);
+  ASSERT_EQ(run.results[0].runs.size(), 2u);
+  for (const auto& r : run.results[0].runs) {
+    ASSERT_EQ(r.result.warnings.size(), 1u) << planners::planStatusName(r.result.status);
+    EXPECT_NE(r.result.warnings[0].find("'far': beyond the robot's reach"), std::string::npos) << r.result.warnings[0];
+  }
+  const std::string text = log.str();
+  const size_t first = text.find("svmp warning: obstacle 'far'");
+  ASSERT_NE(first, std::string::npos) << text;
+  EXPECT_EQ(text.find("svmp warning:", first + 1), std::string::npos) << "warned more than once:\n" << text;
+  const fs::path file = fs::temp_directory_path() / "svmp_driver_warnings_test.json";
+  writeJson(file.string(), run.scenario, run.options, run.results);
+  const YAML::Node records = YAML::LoadFile(file.string())["results"][0]["records"];
+  EXPECT_EQ(records[1]["warnings"][0].as<std::string>(), run.results[0].runs[1].result.warnings[0]);
+  fs::remove(file);
+}
+
 TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
   const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
   cspace::Scenario scenario = cspace::loadScenario(path);
