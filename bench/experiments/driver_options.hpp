@@ -20,7 +20,7 @@ struct DriverOptions {
   int threads = 1;
   int queries = 0;  // --queries N: N seeded random valid start-goal pairs instead of the file's queries
   std::string checker = "fcl";  // --checker: fcl, fastron-fk or fastron-rbf (learned proxy, verify and repair)
-  double time_limit = 0;  // seconds per run (build and queries); 0: none
+  double time_limit = 0;  // seconds per run; with several queries, for the build and for each query; 0: none
   std::string json_path;
   std::string svg_dir;
   std::string paths_json;  // --paths: every run's certified waypoints

@@ -215,15 +215,18 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
     planners::Planner& planner = *planners[p];
     for (int r = 0; r < options.runs; ++r) {
       const std::uint64_t seed = options.seed + r;
-      const planners::Termination stop =
-          options.time_limit > 0 ? planners::Termination::after(options.time_limit) : planners::Termination();
+      // The limit holds for each solve: the build, and each query on its own. A limit for the whole run
+      // would let one query that no planner solves use it up, and every later query fail untried.
+      const auto limit = [&] {
+        return options.time_limit > 0 ? planners::Termination::after(options.time_limit) : planners::Termination();
+      };
       // One query: solve() (clear, build, answer). Several: one build per run answers them all; the
       // first query's record carries the build, later ones what one more query costs.
       planners::PlanResult build;
       double build_ms = 0;
       if (queries.size() > 1) {
         const auto t0 = Clock::now();
-        build = planner.build(seed, stop);
+        build = planner.build(seed, limit());
         build_ms = planners::msSince(t0);
       }
       for (size_t i = 0; i < queries.size(); ++i) {
@@ -231,6 +234,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         record.seed = seed;
         record.query = static_cast<int>(i);
         const double resident_mb = residentMegabytes();
+        const planners::Termination stop = limit();
         const auto t0 = Clock::now();
         if (queries.size() == 1) record.result = planner.solve(queries[i], seed, stop);
         else if (!planner.built()) record.result = build;

@@ -123,6 +123,35 @@ TEST(DriverOutput, ObstaclesLeftUnsampledAreWarnedAbout) {
   fs::remove(file);
 }
 
+#ifdef SVMP_WITH_OMPL
+// --time-limit holds for each query of a run: a query no planner solves (the start shut in a box)
+// ends in a timeout, and the easy query after it still gets its own time and is solved. A limit for
+// the whole run let such a query use it up, and RRTConnect then failed every later query untried.
+TEST(DriverOutput, TimeLimitHoldsForEachQueryOnItsOwn) {
+  Experiment run{cspace::parseScenario(
+                     "robot: {type: point, bounds: {lower: [0, 0], upper: [10, 10]}}\n"
+                     "obstacles:\n"
+                     "  - {name: left, shape: box, size: [0.2, 2.2, 1], position: [1, 2, 0]}\n"
+                     "  - {name: right, shape: box, size: [0.2, 2.2, 1], position: [3, 2, 0]}\n"
+                     "  - {name: bottom, shape: box, size: [2.2, 0.2, 1], position: [2, 1, 0]}\n"
+                     "  - {name: top, shape: box, size: [2.2, 0.2, 1], position: [2, 3, 0]}\n"
+                     "queries:\n"
+                     "  - {start: [2, 2], goal: [8, 8]}\n"
+                     "  - {start: [6, 5], goal: [8, 5]}\n"
+                     "resolution: 0.01\n",
+                     "shut_in.yaml"),
+                 {}, {}};
+  run.options.planners = {"ompl-rrtconnect"};
+  run.options.time_limit = 0.3;
+  std::ostringstream log;
+  run.results = runExperiment(run.scenario, run.options, log);
+  const auto& records = run.results[0].runs;
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_EQ(records[0].result.status, planners::PlanStatus::kTimeout) << log.str();
+  EXPECT_TRUE(records[1].result.solved()) << planners::planStatusName(records[1].result.status) << "\n" << log.str();
+}
+#endif
+
 TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
   const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
   cspace::Scenario scenario = cspace::loadScenario(path);
