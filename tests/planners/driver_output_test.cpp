@@ -21,11 +21,24 @@ struct Experiment {
   cspace::Scenario scenario;
   DriverOptions options;
   std::vector<PlannerRuns> results;
+  std::string log;
 };
+
+// One planner on a scenario given as text.
+Experiment runText(const std::string& yaml, const std::string& planner, int runs, double time_limit = 0) {
+  Experiment run{cspace::parseScenario(yaml, "inline.yaml"), {}, {}, {}};
+  run.options.planners = {planner};
+  run.options.runs = runs;
+  run.options.time_limit = time_limit;
+  std::ostringstream log;
+  run.results = runExperiment(run.scenario, run.options, log);
+  run.log = log.str();
+  return run;
+}
 
 Experiment runFig35(const std::string& name) {
   const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
-  Experiment run{cspace::loadScenario(path), {}, {}};
+  Experiment run{cspace::loadScenario(path), {}, {}, {}};
   run.scenario.name = name;
   run.options.scenario = path;
   run.options.planners = {"svmp", "prm"};
@@ -94,25 +107,20 @@ TEST(DriverOutput, PathsAndResultsParseBackWithTheSameValues) {
 
 // An obstacle SVMP has no sample of is told: in the run's warnings, once in the log, and in the JSON.
 TEST(DriverOutput, ObstaclesLeftUnsampledAreWarnedAbout) {
-  Experiment run{cspace::parseScenario(
-                     "robot: {type: planar_arm, lengths: [1.0, 0.8], widths: 0.05, limits: {lower: [-pi, -2.5], upper: [pi, 2.5]}}\n"
-                     "obstacles:\n"
-                     "  - {name: near, shape: box, size: [0.2, 0.2, 1], position: [0.6, 0.6, 0]}\n"
-                     "  - {name: rim, shape: box, size: [0.2, 0.2, 1], position: [1.4, -0.4, 0]}\n"
-                     "  - {name: far, shape: box, size: [0.2, 0.2, 1], position: [2.5, 0, 0]}\n"
-                     "start: [0, 0]\ngoal: [2.5, 0]\nresolution: 0.01\n",
-                     "unsampled.yaml"),
-                 {}, {}};
-  run.options.planners = {"svmp"};
-  run.options.runs = 2;
-  std::ostringstream log;
-  run.results = runExperiment(run.scenario, run.options, log);
+  const Experiment run = runText(
+      "robot: {type: planar_arm, lengths: [1.0, 0.8], widths: 0.05, limits: {lower: [-pi, -2.5], upper: [pi, 2.5]}}\n"
+      "obstacles:\n"
+      "  - {name: near, shape: box, size: [0.2, 0.2, 1], position: [0.6, 0.6, 0]}\n"
+      "  - {name: rim, shape: box, size: [0.2, 0.2, 1], position: [1.4, -0.4, 0]}\n"
+      "  - {name: far, shape: box, size: [0.2, 0.2, 1], position: [2.5, 0, 0]}\n"
+      "start: [0, 0]\ngoal: [2.5, 0]\nresolution: 0.01\n",
+      "svmp", 2);
   ASSERT_EQ(run.results[0].runs.size(), 2u);
   for (const auto& r : run.results[0].runs) {
     ASSERT_EQ(r.result.warnings.size(), 1u) << planners::planStatusName(r.result.status);
     EXPECT_NE(r.result.warnings[0].find("'far': beyond the robot's reach"), std::string::npos) << r.result.warnings[0];
   }
-  const std::string text = log.str();
+  const std::string& text = run.log;
   const size_t first = text.find("svmp warning: obstacle 'far'");
   ASSERT_NE(first, std::string::npos) << text;
   EXPECT_EQ(text.find("svmp warning:", first + 1), std::string::npos) << "warned more than once:\n" << text;
@@ -128,27 +136,22 @@ TEST(DriverOutput, ObstaclesLeftUnsampledAreWarnedAbout) {
 // ends in a timeout, and the easy query after it still gets its own time and is solved. A limit for
 // the whole run let such a query use it up, and RRTConnect then failed every later query untried.
 TEST(DriverOutput, TimeLimitHoldsForEachQueryOnItsOwn) {
-  Experiment run{cspace::parseScenario(
-                     "robot: {type: point, bounds: {lower: [0, 0], upper: [10, 10]}}\n"
-                     "obstacles:\n"
-                     "  - {name: left, shape: box, size: [0.2, 2.2, 1], position: [1, 2, 0]}\n"
-                     "  - {name: right, shape: box, size: [0.2, 2.2, 1], position: [3, 2, 0]}\n"
-                     "  - {name: bottom, shape: box, size: [2.2, 0.2, 1], position: [2, 1, 0]}\n"
-                     "  - {name: top, shape: box, size: [2.2, 0.2, 1], position: [2, 3, 0]}\n"
-                     "queries:\n"
-                     "  - {start: [2, 2], goal: [8, 8]}\n"
-                     "  - {start: [6, 5], goal: [8, 5]}\n"
-                     "resolution: 0.01\n",
-                     "shut_in.yaml"),
-                 {}, {}};
-  run.options.planners = {"ompl-rrtconnect"};
-  run.options.time_limit = 0.3;
-  std::ostringstream log;
-  run.results = runExperiment(run.scenario, run.options, log);
+  const Experiment run = runText(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [10, 10]}}\n"
+      "obstacles:\n"
+      "  - {name: left, shape: box, size: [0.2, 2.2, 1], position: [1, 2, 0]}\n"
+      "  - {name: right, shape: box, size: [0.2, 2.2, 1], position: [3, 2, 0]}\n"
+      "  - {name: bottom, shape: box, size: [2.2, 0.2, 1], position: [2, 1, 0]}\n"
+      "  - {name: top, shape: box, size: [2.2, 0.2, 1], position: [2, 3, 0]}\n"
+      "queries:\n"
+      "  - {start: [2, 2], goal: [8, 8]}\n"
+      "  - {start: [6, 5], goal: [8, 5]}\n"
+      "resolution: 0.01\n",
+      "ompl-rrtconnect", 1, 0.3);
   const auto& records = run.results[0].runs;
   ASSERT_EQ(records.size(), 2u);
-  EXPECT_EQ(records[0].result.status, planners::PlanStatus::kTimeout) << log.str();
-  EXPECT_TRUE(records[1].result.solved()) << planners::planStatusName(records[1].result.status) << "\n" << log.str();
+  EXPECT_EQ(records[0].result.status, planners::PlanStatus::kTimeout) << run.log;
+  EXPECT_TRUE(records[1].result.solved()) << planners::planStatusName(records[1].result.status) << "\n" << run.log;
 }
 #endif
 
