@@ -417,7 +417,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   constexpr int kMaxRoundsFactor = 8;
   int spent = 0, last_size = -1;
   double widen = 1.0;
-  std::pair<Eigen::VectorXd, Eigen::VectorXd> last_between;
+  RepairTrail trail;
   std::optional<Roadmap> before_repair;  // restored when the query fails (below)
   for (int round = 0;; ++round) {
     Roadmap& with_query = with_query_;
@@ -471,7 +471,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     if (budget && !before_repair) before_repair.emplace(roadmap_);
     const bool repaired =
         budget && !stop() &&
-        repair(with_query, outcome.start_node, outcome.goal_node, widen, last_between, rng, tree_rng, stop, why,
+        repair(with_query, outcome.start_node, outcome.goal_node, widen, trail, rng, tree_rng, stop, why,
                result.times.certify_ms);
     if (stop()) {
       result.status = PlanStatus::kTimeout;

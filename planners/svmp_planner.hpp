@@ -131,13 +131,17 @@ class SvmpPlanner final : public Planner {
   // Centres the deferred ends (centreAlongNormal) and adds those found free as milestones; returns
   // how many. The roadmap's index is rebuilt when any was added.
   int centreDeferred();
+  // What a query's repair rounds remember of the rounds before.
+  struct RepairTrail {
+    std::pair<Eigen::VectorXd, Eigen::VectorXd> last_between;  // the closest pair between the components
+    std::vector<Eigen::VectorXd> visited;  // midpoints of the pairs the rounds repaired at
+  };
   // One repair round; false when no round can help (`why` says so); `why` also keeps why the last
-  // round added nothing. last_between: the closest pair between the start's and the goal's components
-  // of the round before (updated). The trees draw from tree_rng, so the guided samples' draws do not
-  // depend on them. Proofs it runs add their time to certify_ms.
-  bool repair(Roadmap& with_query, int start_node, int goal_node, double widen,
-              std::pair<Eigen::VectorXd, Eigen::VectorXd>& last_between, cspace::Rng& rng,
-              cspace::Rng& tree_rng, const Termination& stop, std::string& why, double& certify_ms);
+  // round added nothing. `trail` is updated. The trees draw from tree_rng, so the guided samples'
+  // draws do not depend on them. Proofs it runs add their time to certify_ms.
+  bool repair(Roadmap& with_query, int start_node, int goal_node, double widen, RepairTrail& trail,
+              cspace::Rng& rng, cspace::Rng& tree_rng, const Termination& stop, std::string& why,
+              double& certify_ms);
   // Links `a` (roadmap node a_node, or -1 for a query's endpoint) to node b_node along the decision
   // boundary: a blocked segment is split at a tangent step from either end or at its middle pulled
   // onto the boundary, each placed in the passage (inPassage), recursively. Straight segments between
