@@ -140,8 +140,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     const bool again = trail.last_between.first.size() == a.size() && trail.last_between.first == a &&
                        trail.last_between.second == b;
     trail.last_between = {a, b};
-    if (trail.visited.empty() || (trail.visited.back() - midpoint(between.front())).norm() > 0)
-      trail.visited.push_back(midpoint(between.front()));
+    if (!again) trail.visited.push_back(0.5 * (a + b));
     const auto within = std::upper_bound(between.begin(), between.end(), 4 * between.front().gap,
                                          [](double g, const Frontier& f) { return g < f.gap; });
     if (again && within - between.begin() > 1) {
