@@ -75,6 +75,11 @@ bool Robot::mayReach(const Eigen::AlignedBox3d& box) const {
   return box.exteriorDistance(poses[0].translation()) <= joint_reach_[0];
 }
 
+double Robot::stepDisplacement(const Eigen::VectorXd& scale, double length) const {
+  if (joint_reach_.size() != dof()) return length / scale.minCoeff();
+  return length * joint_reach_.cwiseQuotient(scale).norm();
+}
+
 void Robot::checkConfiguration(const Eigen::Ref<const Eigen::VectorXd>& q, const char* where) const {
   if (q.size() != dof()) {
     std::ostringstream err;

@@ -58,6 +58,16 @@ Eigen::AlignedBox3d Shape::bounds() const {
   return {pose.translation() - half, pose.translation() + half};
 }
 
+double Shape::thickness() const {
+  switch (kind) {
+    case ShapeKind::kBox: return dims.minCoeff();
+    case ShapeKind::kSphere:
+    case ShapeKind::kCapsule: return 2 * dims.x();
+    case ShapeKind::kCylinder: return std::min(2 * dims.x(), dims.y());
+  }
+  return 0;
+}
+
 const char* shapeKindName(ShapeKind kind) {
   switch (kind) {
     case ShapeKind::kBox: return "box";

@@ -34,6 +34,9 @@ struct Shape {
   // An axis-aligned box holding the shape, in the frame it is attached to (not the tightest for a
   // rotated cylinder: its bounding box's).
   Eigen::AlignedBox3d bounds() const;
+  // The smallest width across the shape: a box's shortest side, a sphere's or capsule's diameter, the
+  // smaller of a cylinder's diameter and length.
+  double thickness() const;
 };
 
 const char* shapeKindName(ShapeKind kind);

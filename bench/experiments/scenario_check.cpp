@@ -1,6 +1,7 @@
 #include "bench/experiments/scenario_check.hpp"
 
 #include <iomanip>
+#include <limits>
 
 #include "cspace/collision_checker.hpp"
 #include "cspace/certified_motion_validator.hpp"
@@ -37,6 +38,21 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
         << " " << robots::shapeKindName(o.shape.kind) << " dims " << format(o.shape.dims) << " at "
         << format(o.shape.pose.translation()) << (o.is_virtual ? " virtual" : "")
         << (o.weight != 1.0 ? " weight " + std::to_string(o.weight) : "") << "\n";
+  }
+  // A sampled motion check looks every `resolution`; between two looks the robot's points move by up
+  // to `step`, so an obstacle thinner than that less the robot's own thinnest part can fall between
+  // them. Certification still rejects such a path; the warning says why planners may then fail.
+  const double step = robot.stepDisplacement(space.metricScale(), scenario.resolution);
+  double robot_thickness = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < robot.numLinks(); ++k)
+    for (const auto& shape : robot.linkShapes(k)) robot_thickness = std::min(robot_thickness, shape.thickness());
+  for (const auto& o : env.obstacles()) {
+    const double width = o.shape.thickness() + robot_thickness;
+    if (o.is_virtual || !(width < step)) continue;
+    out << "warning    obstacle '" << o.name << "' is " << o.shape.thickness() << " thick: one resolution step ("
+        << scenario.resolution << ") moves the robot by up to " << step
+        << ", so sampled motion checks may step through it (paths through it fail certification);"
+        << " a resolution of at most " << scenario.resolution * width / step << " does not\n";
   }
   bool ok = true;
   const cspace::CertifiedMotionValidator certifier(checker, space, scenario.resolution);

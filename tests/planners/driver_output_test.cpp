@@ -10,6 +10,7 @@
 
 #include "bench/experiments/experiment.hpp"
 #include "bench/experiments/output_text.hpp"
+#include "bench/experiments/scenario_check.hpp"
 #include "cspace/collision_checker.hpp"
 
 namespace svmp::experiments {
@@ -154,6 +155,23 @@ TEST(DriverOutput, TimeLimitHoldsForEachQueryOnItsOwn) {
   EXPECT_TRUE(records[1].result.solved()) << planners::planStatusName(records[1].result.status) << "\n" << run.log;
 }
 #endif
+
+// --check warns of an obstacle thinner than what one resolution step can jump (a point robot: the
+// step itself), naming it, and not of one thick enough.
+TEST(DriverOutput, CheckWarnsOfObstaclesThinnerThanAStep) {
+  const cspace::Scenario scenario = cspace::parseScenario(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: foil, shape: box, size: [0.004, 0.6, 1], position: [0.5, 0.3, 0]}\n"
+      "  - {name: plank, shape: box, size: [0.02, 0.3, 1], position: [0.5, 0.85, 0]}\n"
+      "start: [0.1, 0.3]\ngoal: [0.9, 0.3]\nresolution: 0.01\n",
+      "thin.yaml");
+  std::ostringstream out;
+  EXPECT_TRUE(printScenarioCheck(scenario, out));
+  const std::string text = out.str();
+  EXPECT_NE(text.find("warning    obstacle 'foil' is 0.004 thick"), std::string::npos) << text;
+  EXPECT_EQ(text.find("'plank'", text.find("warning")), std::string::npos) << text;
+}
 
 TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
   const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";

@@ -316,6 +316,44 @@ TEST(RobotTest, MayReachHoldsEveryConfigurationsShapesAndNothingFarBeyond) {
   EXPECT_FALSE(point.mayReach(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0.2), Eigen::Vector3d(1, 1, 1))));
 }
 
+// stepDisplacement bounds how far any point moves over a motion of that metric length: random
+// configurations, random directions scaled to the length under unequal weights, the points of every
+// link shape (box corners; a capsule's or sphere's centre plus its radius) before and after.
+TEST(RobotTest, StepDisplacementBoundsEveryPointsMotion) {
+  const DhArm crs(crsF3Spec(6));
+  const PlanarArm planar = threeLinkArm();
+  const PointRobot point(vec({0, 0, 0}), vec({1, 2, 3}), 0.01);
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> gauss(0, 1);
+  for (const Robot* robot : std::initializer_list<const Robot*>{&crs, &planar, &point}) {
+    Eigen::VectorXd scale(robot->dof());
+    for (int k = 0; k < scale.size(); ++k) scale[k] = 0.5 + 0.25 * k;
+    const double length = 0.05, bound = robot->stepDisplacement(scale, length);
+    double worst = 0;
+    for (int trial = 0; trial < 500; ++trial) {
+      Eigen::VectorXd q = 0.5 * (robot->lowerLimits() + robot->upperLimits()), d(robot->dof());
+      for (int k = 0; k < q.size(); ++k) q[k] += 0.3 * gauss(rng), d[k] = gauss(rng);
+      d *= length / d.cwiseProduct(scale).norm();  // metric length `length`
+      Poses before, after;
+      robot->linkPoses(q, before);
+      robot->linkPoses(q + d, after);
+      for (int link = 0; link < robot->numLinks(); ++link)
+        for (const Shape& shape : robot->linkShapes(link)) {
+          const Eigen::AlignedBox3d box(-0.5 * shape.dims, 0.5 * shape.dims);
+          for (int c = 0; c < 8; ++c) {
+            const Eigen::Vector3d local =
+                shape.kind == ShapeKind::kBox ? box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c))
+                                              : Eigen::Vector3d(c % 2 ? shape.dims.x() : -shape.dims.x(), 0, 0);
+            const Eigen::Vector3d p = shape.pose * local;
+            worst = std::max(worst, (after[link] * p - before[link] * p).norm());
+          }
+        }
+    }
+    EXPECT_LE(worst, bound * (1 + 1e-12)) << robot->name();
+    EXPECT_GT(worst, 0.3 * bound) << robot->name() << ": bound far looser than any motion seen";
+  }
+}
+
 TEST(RobotTest, LimitsAndConfigurationChecks) {
   const PlanarArm arm = threeLinkArm();
   EXPECT_TRUE(arm.withinLimits(vec({kPi, -kPi, 0})));
