@@ -47,7 +47,8 @@ const char* driverUsage() {
          "              path is verified on FCL and its invalid stretches replanned (verify and repair)\n"
          "  --ompl-log  every run of every planner in OMPL's benchmark log format: ompl_benchmark_statistics\n"
          "              -d DB FILE makes the database Planner Arena reads\n"
-         "  --check     print the scenario's summary, validate planners and --set, verify the witness\n"
+         "  --check     print the scenario's summary, validate planners and --set, verify the witness, warn\n"
+         "              of obstacles thinner than one resolution step\n"
          "       svmp-plan --merge SHARD.json... [--json FILE] [--scenario FILE]\n"
          "  --merge     merge the --json files of shards of one run (seed ranges of scripts/sweep) into that\n"
          "              run's table and JSON; the scenario is the shards' \"file\" unless --scenario is given\n";
