@@ -19,6 +19,10 @@ class PointRobot final : public Robot {
                            const Eigen::Ref<const Eigen::VectorXd>& b) const override {
     return (b - a).norm();
   }
+  // Exact: the longest b - a of that length lies along the axis of least weight.
+  double stepDisplacement(const Eigen::VectorXd& scale, double length) const override {
+    return length / scale.minCoeff();
+  }
 
  private:
   double radius_;

@@ -76,7 +76,7 @@ bool Robot::mayReach(const Eigen::AlignedBox3d& box) const {
 }
 
 double Robot::stepDisplacement(const Eigen::VectorXd& scale, double length) const {
-  if (joint_reach_.size() != dof()) return length / scale.minCoeff();
+  if (joint_reach_.size() != dof()) throw std::logic_error(name_ + ": no displacement bound set");
   return length * joint_reach_.cwiseQuotient(scale).norm();
 }
 

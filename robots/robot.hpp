@@ -57,10 +57,9 @@ class Robot {
   // true when the robot gives no bound. Obstacle sampling skips the obstacles no configuration touches.
   virtual bool mayReach(const Eigen::AlignedBox3d& box) const;
   // How far any point of the robot may move over a straight motion of `length` in the weighted metric
-  // (`scale`: the square roots of the metric weights): the worst direction of displacementBound, by
-  // Cauchy-Schwarz length sqrt(sum_j reach_j^2 / scale_j^2) for a chain, length / min scale for a
-  // robot that translates.
-  double stepDisplacement(const Eigen::VectorXd& scale, double length) const;
+  // (`scale`: the square roots of the metric weights): displacementBound in its worst direction, by
+  // Cauchy-Schwarz length sqrt(sum_j reach_j^2 / scale_j^2) for a chain.
+  virtual double stepDisplacement(const Eigen::VectorXd& scale, double length) const;
 
   // Throws std::invalid_argument naming the problem when q has the wrong size or is not finite.
   void checkConfiguration(const Eigen::Ref<const Eigen::VectorXd>& q, const char* where) const;
