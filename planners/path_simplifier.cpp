@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -102,6 +103,31 @@ double pathLength(const std::vector<Eigen::VectorXd>& path, const cspace::Config
   double length = 0;
   for (size_t i = 1; i < path.size(); ++i) length += space.distance(path[i - 1], path[i]);
   return length;
+}
+
+double minClearance(const std::vector<Eigen::VectorXd>& path, const cspace::ValidityChecker& checker,
+                    const cspace::ConfigurationSpace& space, double step) {
+  if (path.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double least = checker.clearance(path.front());
+  Eigen::VectorXd q(space.dim());
+  for (size_t i = 1; i < path.size(); ++i) {
+    // In double before converting: the loader bounds segment lengths, this keeps any count finite.
+    const double pieces = std::min(std::max(1.0, std::ceil(space.distance(path[i - 1], path[i]) / step)),
+                                   static_cast<double>(cspace::kMaxSegmentChecks));
+    const auto n = static_cast<std::int64_t>(pieces);
+    const double per_piece = checker.robot().displacementBound(path[i - 1], path[i]) / pieces;
+    for (std::int64_t k = 1; k <= n;) {
+      space.interpolate(path[i - 1], path[i], static_cast<double>(k) / pieces, q);
+      const double c = checker.clearance(q);
+      least = std::min(least, c);
+      // Points k + 1 .. k + skip lie within skip x per_piece of q: at clearance >= c - that >= least.
+      // (Comparisons false on NaN, infinite clearances without obstacles: the segment is done.)
+      double skip = pieces;
+      if (per_piece > 0 && c - least < pieces * per_piece) skip = std::floor((c - least) / per_piece);
+      k += 1 + static_cast<std::int64_t>(skip);
+    }
+  }
+  return least;
 }
 
 double smoothness(const std::vector<Eigen::VectorXd>& path, const cspace::ConfigurationSpace& space) {

@@ -37,4 +37,12 @@ double smoothness(const std::vector<Eigen::VectorXd>& path, const cspace::Config
 
 double pathLength(const std::vector<Eigen::VectorXd>& path, const cspace::ConfigurationSpace& space);
 
+// The smallest checker.clearance over the path's vertices and the points every `step` (metric of
+// `space`) along its segments: the dense scan's value (up to FCL's own distance error), without
+// measuring the points that the last measured one proves no closer than the minimum so far. Clearance
+// changes by at most how far the robot's points move (robots::Robot::displacementBound), so a point
+// at clearance c keeps the next (c - minimum) / (bound per step) points at or above the minimum.
+double minClearance(const std::vector<Eigen::VectorXd>& path, const cspace::ValidityChecker& checker,
+                    const cspace::ConfigurationSpace& space, double step);
+
 }  // namespace svmp::planners

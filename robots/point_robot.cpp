@@ -28,6 +28,13 @@ bool PointRobot::mayReach(const Eigen::AlignedBox3d& box) const {
   return box.intersects(Eigen::AlignedBox3d(low - grow, high + grow));
 }
 
+std::optional<Eigen::VectorXd> PointRobot::configurationAt(const Eigen::Vector3d& point) const {
+  const Eigen::VectorXd q = point.head(dof());
+  if ((q.array() < lowerLimits().array()).any() || (q.array() > upperLimits().array()).any())
+    return std::nullopt;
+  return q;
+}
+
 void PointRobot::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q,
                                Eigen::Matrix3Xd& points) const {
   points.setZero(3, 1);

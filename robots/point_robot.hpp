@@ -14,6 +14,9 @@ class PointRobot final : public Robot {
   int numControlPoints() const override { return 1; }
   // Whether the box meets the bounds (z = 0 in 2-D) grown by the radius.
   bool mayReach(const Eigen::AlignedBox3d& box) const override;
+  // The point's first dof() coordinates when they are within the limits (in 2-D: the point's
+  // projection onto z = 0, where the robot moves).
+  std::optional<Eigen::VectorXd> configurationAt(const Eigen::Vector3d& point) const override;
   // Exact: the robot translates by b - a.
   double displacementBound(const Eigen::Ref<const Eigen::VectorXd>& a,
                            const Eigen::Ref<const Eigen::VectorXd>& b) const override {

@@ -75,6 +75,8 @@ bool Robot::mayReach(const Eigen::AlignedBox3d& box) const {
   return box.exteriorDistance(poses[0].translation()) <= joint_reach_[0];
 }
 
+std::optional<Eigen::VectorXd> Robot::configurationAt(const Eigen::Vector3d&) const { return std::nullopt; }
+
 double Robot::stepDisplacement(const Eigen::VectorXd& scale, double length) const {
   if (joint_reach_.size() != dof()) throw std::logic_error(name_ + ": no displacement bound set");
   return length * joint_reach_.cwiseQuotient(scale).norm();

@@ -7,6 +7,7 @@
 // threads at once (callers own the output buffers).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,6 +57,10 @@ class Robot {
   // chain, when the box lies beyond jointReach()[0] of the first joint's origin, which no joint moves;
   // true when the robot gives no bound. Obstacle sampling skips the obstacles no configuration touches.
   virtual bool mayReach(const Eigen::AlignedBox3d& box) const;
+  // A configuration within the limits that places the robot at `point` (world frame), where a closed
+  // form gives one (a point robot: the point itself); nullopt otherwise. Obstacle sampling tries an
+  // obstacle's centre as its tree's root this way before searching for a draw that hits it.
+  virtual std::optional<Eigen::VectorXd> configurationAt(const Eigen::Vector3d& point) const;
   // How far any point of the robot may move over a straight motion of `length` in the weighted metric
   // (`scale`: the square roots of the metric weights): displacementBound in its worst direction, by
   // Cauchy-Schwarz length sqrt(sum_j reach_j^2 / scale_j^2) for a chain.

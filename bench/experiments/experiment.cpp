@@ -60,21 +60,9 @@ void measurePath(const cspace::Scenario& scenario, const cspace::ConfigurationSp
                  const cspace::CollisionChecker& checker, RunRecord& record) {
   const auto& path = record.result.path;
   if (path.empty()) return;
-  const double step = scenario.resolution / 4;
   record.path_length = planners::pathLength(path, space);
   record.smoothness = planners::smoothness(path, space);
-  record.min_clearance = checker.clearance(path.front());
-  Eigen::VectorXd q(space.dim());
-  for (size_t i = 1; i < path.size(); ++i) {
-    // In double before converting: the loader bounds segment lengths, this keeps any count finite.
-    const double pieces = std::min(std::max(1.0, std::ceil(space.distance(path[i - 1], path[i]) / step)),
-                                   static_cast<double>(cspace::kMaxSegmentChecks));
-    const auto n = static_cast<std::int64_t>(pieces);
-    for (std::int64_t k = 1; k <= n; ++k) {
-      space.interpolate(path[i - 1], path[i], static_cast<double>(k) / n, q);
-      record.min_clearance = std::min(record.min_clearance, checker.clearance(q));
-    }
-  }
+  record.min_clearance = planners::minClearance(path, checker, space, scenario.resolution / 4);
 }
 
 // With --checker fastron-*: the proxy (trained once, on the scenario's query end points too) and the

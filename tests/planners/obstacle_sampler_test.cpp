@@ -146,11 +146,10 @@ TEST(ObstacleSampler, RootThatMissesItsObstacleIsReportedNotUsed) {
   for (int label : s.labels) EXPECT_NE(label, 3);
 }
 
-// 64 boxes of side 0.04 (0.16% of the space each) and one box inside the first: a root search per
-// obstacle draws about 625 uniform configurations for each (40k checks); the shared search names
-// the box each draw hits, about 625 x H(64) = 3k draws for all. The inner box is never the lowest id
-// a draw hits, so it searches on its own (about 2.5k draws) and still gets its root.
-TEST(ObstacleSampler, RootsOfManySmallObstaclesComeFromOneSharedSearch) {
+// 64 boxes of side 0.04 and one box inside the first, around a point robot: each root is a draw in
+// its box's bounds (robots::Robot::configurationAt), which hits the box at once, so the 65 roots
+// cost 65 checks. A uniform search costs about 625 draws per box (0.16% of the space each).
+TEST(ObstacleSampler, APointRobotsRootsAreDrawnInTheirObstaclesBounds) {
   std::string yaml = "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\nobstacles:\n";
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j)
@@ -160,15 +159,44 @@ TEST(ObstacleSampler, RootsOfManySmallObstaclesComeFromOneSharedSearch) {
           "start: [0.01, 0.01]\ngoal: [0.99, 0.99]\nresolution: 0.01\n";
   auto w = makeWorld(yaml);
   planners::ObstacleSamplerOptions opt;
-  opt.samples_per_tree = 1;  // the root only: every check counted is a root search's
+  opt.samples_per_tree = 1;  // the root only: every check counted is a root's
   const std::uint64_t before = w->checker.collisionChecks();
   const auto s = planners::sampleObstacles(w->checker, w->space, opt, 27, 1);
-  const std::uint64_t checks = w->checker.collisionChecks() - before;
+  EXPECT_EQ(w->checker.collisionChecks() - before, 65u);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
   ASSERT_EQ(s.tree_sizes.size(), 65u);
   for (int size : s.tree_sizes) EXPECT_EQ(size, 1);
   for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i])) << i;
-  EXPECT_LT(checks, 12000u) << "roots searched obstacle by obstacle";
+}
+
+// An arm has no configuration at a point, so its roots come from uniform draws: 32 small boxes on a
+// ring only the second link reaches. The shared search, naming the box each draw hits, costs less
+// than half of what the 32 boxes' own searches cost together (each measured alone in its own world).
+TEST(ObstacleSampler, RootsOfManySmallObstaclesComeFromOneSharedSearch) {
+  const std::string arm =
+      "robot: {type: planar_arm, lengths: [0.6, 0.6], widths: 0.05, limits: {lower: [-pi, -pi], upper: [pi, pi]}}\n"
+      "start: [0, 2.5]\ngoal: [1, 2.5]\nresolution: 0.01\nobstacles:\n";  // folded, inside the ring
+  std::vector<std::string> boxes;
+  for (int k = 0; k < 32; ++k) {
+    const double angle = 2 * M_PI * k / 32;
+    boxes.push_back("  - {shape: box, size: [0.05, 0.05, 1], position: [" + std::to_string(std::cos(angle)) + ", " +
+                    std::to_string(std::sin(angle)) + ", 0]}\n");
+  }
+  planners::ObstacleSamplerOptions opt;
+  opt.samples_per_tree = 1;
+  const auto rootChecks = [&](const std::string& yaml, size_t trees) {
+    auto w = makeWorld(yaml);
+    const std::uint64_t before = w->checker.collisionChecks();
+    const auto s = planners::sampleObstacles(w->checker, w->space, opt, 27, 1);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    EXPECT_EQ(s.tree_sizes.size(), trees);
+    for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i])) << i;
+    return w->checker.collisionChecks() - before;
+  };
+  std::uint64_t alone = 0;
+  std::string all = arm;
+  for (const std::string& box : boxes) alone += rootChecks(arm + box, 1), all += box;
+  EXPECT_LT(2 * rootChecks(all, 32), alone);
 }
 
 // A 2-link arm (reach 1.8 + the links' half width from its base) with a box beyond its reach, one

@@ -1,6 +1,7 @@
 // planners/path_simplifier: every segment of a simplified path passes the validator that simplified
 // it, start and goal stay, the path never gets longer, the same seed gives the same path, and OMPL's
-// smoothness is 0 on a line and matches a hand computation on a right angle.
+// smoothness is 0 on a line and matches a hand computation on a right angle; minClearance equals the
+// dense scan it skips through, with fewer distance queries.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +15,7 @@ namespace {
 
 using test::gapScenario;
 using test::makeWorld;
+using test::readScenario;
 
 // A zig-zag through the gap: many vertices, much longer than needed.
 std::vector<Eigen::VectorXd> zigZag() {
@@ -56,6 +58,45 @@ TEST(PathSimplifier, SmoothnessIsOmplsMeasure) {
   const std::vector<Eigen::VectorXd> corner = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(1, 1)};
   EXPECT_NEAR(smoothness(corner, w->space), M_PI * M_PI / 4, 1e-12);
   EXPECT_NEAR(pathLength(corner, w->space), 2.0, 1e-12);
+}
+
+// Every point a step apart, each measured: what minClearance must equal.
+double denseMinClearance(const std::vector<Eigen::VectorXd>& path, const cspace::CollisionChecker& checker,
+                         const cspace::ConfigurationSpace& space, double step) {
+  double least = checker.clearance(path.front());
+  Eigen::VectorXd q(space.dim());
+  for (size_t i = 1; i < path.size(); ++i) {
+    const double n = std::max(1.0, std::ceil(space.distance(path[i - 1], path[i]) / step));
+    for (int k = 1; k <= n; ++k) {
+      space.interpolate(path[i - 1], path[i], k / n, q);
+      least = std::min(least, checker.clearance(q));
+    }
+  }
+  return least;
+}
+
+// Random paths of 2-6 vertices (free or not: through obstacles the minimum is 0 at once, and the
+// scan still measures every point near one) among 200 boxes (point robot: FCL's sphere-box distance
+// is exact) and on the CRS-F3 of Fig 4.4 (capsules: FCL's GJK, so within its tolerance).
+TEST(PathSimplifier, MinClearanceIsTheDenseScansWithFewerQueries) {
+  for (const char* name : {"forest_200.yaml", "thesis_fig4_4.yaml"}) {
+    auto w = makeWorld(readScenario(name));
+    const double step = w->scenario.resolution / 4;
+    cspace::Rng rng(7);
+    std::uint64_t fast_queries = 0, dense_queries = 0;
+    for (int trial = 0; trial < 10; ++trial) {
+      std::vector<Eigen::VectorXd> path(2 + trial % 5, Eigen::VectorXd(w->space.dim()));
+      for (auto& q : path) w->space.sampleUniform(rng, q);
+      std::uint64_t before = w->checker.distanceQueries();
+      const double fast = minClearance(path, w->checker, w->space, step);
+      fast_queries += w->checker.distanceQueries() - before;
+      before = w->checker.distanceQueries();
+      const double dense = denseMinClearance(path, w->checker, w->space, step);
+      dense_queries += w->checker.distanceQueries() - before;
+      EXPECT_NEAR(fast, dense, 1e-9) << name << " trial " << trial;
+    }
+    EXPECT_LT(fast_queries * 2, dense_queries) << name;
+  }
 }
 
 }  // namespace

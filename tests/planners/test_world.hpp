@@ -92,10 +92,33 @@ inline std::string gapScenario(double gap, const std::string& planners, const st
   return std::string(buf) + extra + "planners:\n" + planners;
 }
 
-// Every segment re-checked by an independent checker at 1/4 of the resolution, end points included.
+// Segment a-b re-checked by an independent checker at 1/4 of the resolution, end points included.
 // `allowed_run` > 0 tolerates colliding stretches shorter than that (metric length between the free
 // configurations around them): a validator checking at spacing `resolution` can only promise that no
 // stretch longer than the resolution collides (it may clip a corner between two checks).
+inline ::testing::AssertionResult segmentIsValid(const World& w, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                                                 double allowed_run = 0) {
+  const cspace::CollisionChecker independent(w.scenario.robot, w.scenario.environment, w.scenario.self_collision);
+  const double length = w.space.distance(a, b);
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.25 * w.scenario.resolution))));
+  int last_free = -1;
+  for (int s = 0; s <= steps; ++s) {
+    const Eigen::VectorXd q = a + (static_cast<double>(s) / steps) * (b - a);
+    const int hit = independent.check(q);
+    if (hit == cspace::kFree) {
+      last_free = s;
+      continue;
+    }
+    // The colliding stretch reaches at least from the last free point to the next one.
+    const double run = (s + 1 - last_free) * length / steps;
+    if (s == 0 || s == steps || run > allowed_run)
+      return ::testing::AssertionFailure() << "hits " << hit << " at " << q.transpose() << " (colliding stretch "
+                                           << run << " > allowed " << allowed_run << ")";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// The path joins the query's start and goal, and every segment passes segmentIsValid.
 inline ::testing::AssertionResult pathIsValid(const World& w, const std::vector<Eigen::VectorXd>& path,
                                               double allowed_run = 0) {
   if (path.size() < 2) return ::testing::AssertionFailure() << "path has " << path.size() << " configurations";
@@ -103,27 +126,8 @@ inline ::testing::AssertionResult pathIsValid(const World& w, const std::vector<
     return ::testing::AssertionFailure() << "path starts at " << path.front().transpose();
   if ((path.back() - w.query().goal).norm() > 1e-9)
     return ::testing::AssertionFailure() << "path ends at " << path.back().transpose();
-  const cspace::CollisionChecker independent(w.scenario.robot, w.scenario.environment, w.scenario.self_collision);
-  const double fine = 0.25 * w.scenario.resolution;
-  for (size_t i = 0; i + 1 < path.size(); ++i) {
-    const double length = w.space.distance(path[i], path[i + 1]);
-    const int steps = std::max(1, static_cast<int>(std::ceil(length / fine)));
-    int last_free = -1;
-    for (int s = 0; s <= steps; ++s) {
-      const Eigen::VectorXd q = path[i] + (static_cast<double>(s) / steps) * (path[i + 1] - path[i]);
-      const int hit = independent.check(q);
-      if (hit == cspace::kFree) {
-        last_free = s;
-        continue;
-      }
-      // The colliding stretch reaches at least from the last free point to the next one.
-      const double run = (s + 1 - last_free) * length / steps;
-      if (s == 0 || s == steps || run > allowed_run)
-        return ::testing::AssertionFailure()
-               << "segment " << i << " hits " << hit << " at " << q.transpose() << " (colliding stretch "
-               << run << " > allowed " << allowed_run << ")";
-    }
-  }
+  for (size_t i = 0; i + 1 < path.size(); ++i)
+    if (auto valid = segmentIsValid(w, path[i], path[i + 1], allowed_run); !valid) return valid << " (segment " << i << ")";
   return ::testing::AssertionSuccess();
 }
 

@@ -316,6 +316,24 @@ TEST(RobotTest, MayReachHoldsEveryConfigurationsShapesAndNothingFarBeyond) {
   EXPECT_FALSE(point.mayReach(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0.2), Eigen::Vector3d(1, 1, 1))));
 }
 
+// configurationAt: a point robot at the point (in 2-D its projection onto z = 0), placed there by
+// linkPoses, and nothing outside its limits; an arm has no closed form here.
+TEST(RobotTest, ConfigurationAtPlacesAPointRobotAndNoArm) {
+  const PointRobot flat(vec({0, 0}), vec({1, 2})), space(vec({0, 0, 0}), vec({1, 2, 3}));
+  const auto q = flat.configurationAt(Eigen::Vector3d(0.3, 1.5, 0.7));
+  ASSERT_TRUE(q.has_value());
+  EXPECT_EQ(*q, vec({0.3, 1.5}));
+  const auto r = space.configurationAt(Eigen::Vector3d(0.3, 1.5, 0.7));
+  ASSERT_TRUE(r.has_value());
+  Poses poses;
+  space.linkPoses(*r, poses);
+  EXPECT_TRUE(poses[0].translation().isApprox(Eigen::Vector3d(0.3, 1.5, 0.7)));
+  EXPECT_FALSE(flat.configurationAt(Eigen::Vector3d(1.1, 1, 0)).has_value());
+  EXPECT_FALSE(space.configurationAt(Eigen::Vector3d(0.5, -0.1, 1)).has_value());
+  EXPECT_FALSE(DhArm(crsF3Spec(3)).configurationAt(Eigen::Vector3d(0.3, 0.1, 0.4)).has_value());
+  EXPECT_FALSE(threeLinkArm().configurationAt(Eigen::Vector3d(0.3, 0.1, 0)).has_value());
+}
+
 // stepDisplacement bounds how far any point moves over a motion of that metric length: random
 // configurations, random directions scaled to the length under unequal weights, the points of every
 // link shape (box corners; a capsule's or sphere's centre plus its radius) before and after.
