@@ -58,8 +58,8 @@ class Robot {
   // true when the robot gives no bound. Obstacle sampling skips the obstacles no configuration touches.
   virtual bool mayReach(const Eigen::AlignedBox3d& box) const;
   // A configuration within the limits that places the robot at `point` (world frame), where a closed
-  // form gives one (a point robot: the point itself); nullopt otherwise. Obstacle sampling tries an
-  // obstacle's centre as its tree's root this way before searching for a draw that hits it.
+  // form gives one (a point robot: the point itself); nullopt otherwise. Obstacle sampling roots a
+  // tree at points drawn in the obstacle's bounding box this way before searching the whole space.
   virtual std::optional<Eigen::VectorXd> configurationAt(const Eigen::Vector3d& point) const;
   // How far any point of the robot may move over a straight motion of `length` in the weighted metric
   // (`scale`: the square roots of the metric weights): displacementBound in its worst direction, by
