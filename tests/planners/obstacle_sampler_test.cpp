@@ -23,6 +23,27 @@ const char* kThreeObstacles =
     "resolution: 0.01\n"
     "metric_weights: [1.0, 2.0]\n";
 
+// sampleObstacles on one thread, and the collision checks it made.
+struct CountedSamples {
+  planners::ObstacleSamples samples;
+  std::uint64_t checks;
+};
+CountedSamples sampleCountingChecks(const test::World& w, const planners::ObstacleSamplerOptions& opt,
+                                    std::uint64_t seed) {
+  const std::uint64_t before = w.checker.collisionChecks();
+  planners::ObstacleSamples s = planners::sampleObstacles(w.checker, w.space, opt, seed, 1);
+  return {std::move(s), w.checker.collisionChecks() - before};
+}
+
+// Every sample hits the obstacle it is labelled with (its first miss named).
+::testing::AssertionResult everySampleHitsItsObstacle(const test::World& w, const planners::ObstacleSamples& s) {
+  for (int i = 0; i < s.size(); ++i)
+    if (!w.checker.hits(s.points.col(i), s.labels[i]))
+      return ::testing::AssertionFailure() << "sample " << i << " at " << s.points.col(i).transpose()
+                                           << " does not hit " << s.labels[i];
+  return ::testing::AssertionSuccess();
+}
+
 planners::ObstacleSamplerOptions samplerOptions() {
   planners::ObstacleSamplerOptions o;
   o.step = 0.04;
@@ -49,10 +70,9 @@ TEST(ObstacleSampler, SamplesHitTheirObstacleAndTreesAreFull) {
     ASSERT_LE(s.labels[i], 3);
     ++per_label[s.labels[i]];
     boundary_per_label[s.labels[i]] += s.boundary[i];
-    EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i]))
-        << "sample " << i << " at " << s.points.col(i).transpose() << " does not hit " << s.labels[i];
     EXPECT_TRUE(w->space.contains(s.points.col(i)));
   }
+  EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
   for (int id = 1; id <= 3; ++id) {
     EXPECT_EQ(per_label[id], opt.samples_per_tree);
     EXPECT_GT(boundary_per_label[id], 0) << "obstacle " << id << " has no boundary sample";
@@ -74,9 +94,7 @@ TEST(ObstacleSampler, AFullTreeStopsGrowing) {
   planners::ObstacleSamplerOptions opt;
   opt.step = 0.05;
   opt.samples_per_tree = 200;
-  const std::uint64_t before = w->checker.collisionChecks();
-  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 3, 1);
-  const std::uint64_t checks = w->checker.collisionChecks() - before;
+  const auto [s, checks] = sampleCountingChecks(*w, opt, 3);
   ASSERT_EQ(s.tree_sizes.size(), 1u);
   EXPECT_LT(s.tree_sizes[0], opt.samples_per_tree);
   EXPECT_GT(s.tree_sizes[0], 10) << s.warnings.front();
@@ -84,7 +102,7 @@ TEST(ObstacleSampler, AFullTreeStopsGrowing) {
   EXPECT_NE(s.warnings[0].find("added nothing"), std::string::npos) << s.warnings[0];
   // Each idle expansion is one check; the limit would be 50 x 200 of them.
   EXPECT_LT(checks, 10u * static_cast<std::uint64_t>(opt.samples_per_tree) + 100u * s.tree_sizes[0]);
-  for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i]));
+  EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
 }
 
 TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
@@ -160,13 +178,12 @@ TEST(ObstacleSampler, APointRobotsRootsAreDrawnInTheirObstaclesBounds) {
   auto w = makeWorld(yaml);
   planners::ObstacleSamplerOptions opt;
   opt.samples_per_tree = 1;  // the root only: every check counted is a root's
-  const std::uint64_t before = w->checker.collisionChecks();
-  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 27, 1);
-  EXPECT_EQ(w->checker.collisionChecks() - before, 65u);
+  const auto [s, checks] = sampleCountingChecks(*w, opt, 27);
+  EXPECT_EQ(checks, 65u);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
   ASSERT_EQ(s.tree_sizes.size(), 65u);
   for (int size : s.tree_sizes) EXPECT_EQ(size, 1);
-  for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i])) << i;
+  EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
 }
 
 // An arm has no configuration at a point, so its roots come from uniform draws: 32 small boxes on a
@@ -186,12 +203,11 @@ TEST(ObstacleSampler, RootsOfManySmallObstaclesComeFromOneSharedSearch) {
   opt.samples_per_tree = 1;
   const auto rootChecks = [&](const std::string& yaml, size_t trees) {
     auto w = makeWorld(yaml);
-    const std::uint64_t before = w->checker.collisionChecks();
-    const auto s = planners::sampleObstacles(w->checker, w->space, opt, 27, 1);
+    const auto [s, checks] = sampleCountingChecks(*w, opt, 27);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
     EXPECT_EQ(s.tree_sizes.size(), trees);
-    for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i])) << i;
-    return w->checker.collisionChecks() - before;
+    EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
+    return checks;
   };
   std::uint64_t alone = 0;
   std::string all = arm;
@@ -214,9 +230,7 @@ TEST(ObstacleSampler, ObstacleBeyondTheArmsReachIsSkippedWithoutSearching) {
   planners::ObstacleSamplerOptions opt;
   opt.step = 0.05;
   opt.samples_per_tree = 30;
-  const std::uint64_t before = w->checker.collisionChecks();
-  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 31, 1);
-  const std::uint64_t checks = w->checker.collisionChecks() - before;
+  const auto [s, checks] = sampleCountingChecks(*w, opt, 31);
   ASSERT_EQ(s.tree_sizes.size(), 3u);
   EXPECT_GT(s.tree_sizes[0], 0);
   EXPECT_GT(s.tree_sizes[1], 0) << "the rim box is within reach";
@@ -224,7 +238,7 @@ TEST(ObstacleSampler, ObstacleBeyondTheArmsReachIsSkippedWithoutSearching) {
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_NE(s.warnings[0].find("'far': beyond the robot's reach"), std::string::npos) << s.warnings[0];
   EXPECT_LT(checks, 50000u);
-  for (int i = 0; i < s.size(); ++i) EXPECT_TRUE(w->checker.hits(s.points.col(i), s.labels[i])) << i;
+  EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
 }
 
 TEST(ObstacleSampler, SameSeedGivesSameSamplesWithOneAndTwoThreads) {
