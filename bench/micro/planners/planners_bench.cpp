@@ -1,12 +1,16 @@
 // Hot paths of the planners: obstacle sampling (thesis Algorithm 1), milestone descent on the risk
 // function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric,
-// one query on a built SVMP roadmap (many queries, `svmp-plan --queries`), and the eager pass that
-// connects a roadmap's milestones (node order, as the thesis, or shortest pairs first).
+// one query on a built SVMP roadmap (many queries, `svmp-plan --queries`), a lazy query's repeated
+// searches, and the eager pass that connects a roadmap's milestones (node order, as the thesis, or
+// shortest pairs first).
 // The world is thesis Fig 3.7 (bench/scenarios/thesis_fig3_7.yaml) or the 5-DoF arm of Fig 4.4; the
 // queries run on svpp_3d20_01 (a point among 20 boxes) and fastron_panda (the Panda).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <memory>
+#include <random>
+#include <set>
 
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
@@ -111,10 +115,6 @@ void BM_NearestNeighbors(benchmark::State& state) {
 }
 BENCHMARK(BM_NearestNeighbors)->Arg(1000)->Arg(10000);
 
-// One query per iteration on SVMP's roadmap built with the file's parameters (seed 1): the roadmap is
-// assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers in turn the 100
-// valid start-goal pairs of `svmp-plan --queries 100 --seed 1`, every path proven (no repair: the
-// roadmap stays the same).
 // A scenario file of bench/scenarios and SVMP on it with the file's parameters, built with seed 1
 // (`built` false when the build failed); paths proven when `certify`.
 struct BuiltSvmp {
@@ -138,6 +138,10 @@ struct BuiltSvmp {
         built(svmp.build(1).solved()) {}
 };
 
+// One query per iteration on SVMP's roadmap built with the file's parameters (seed 1): the roadmap is
+// assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers in turn the 100
+// valid start-goal pairs of `svmp-plan --queries 100 --seed 1`, every path proven (no repair: the
+// roadmap stays the same).
 void BM_RoadmapQuery(benchmark::State& state) {
   const std::string file = state.range(0) == 0 ? "svpp_3d20_01.yaml" : "fastron_panda.yaml";
   BuiltSvmp world(file, true);
@@ -170,6 +174,63 @@ void BM_RoadmapQuery(benchmark::State& state) {
   state.SetLabel(file.substr(0, file.size() - 5));
 }
 BENCHMARK(BM_RoadmapQuery)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// A lazy query's repeated searches (provenPath's loop, its motion checks replaced by a table made
+// before timing): 300 milestones uniform in the free part of the unit square among 200 discs of radius
+// 0.02 (forest_200 scaled to the unit square), each joined unchecked to its 10 nearest. Search corner
+// to corner, remove the path's edges that cross a disc, search again until a path is free.
+// Arg 0: A* with the metric every time; arg 1: RepeatedSearch (Adaptive A*).
+void BM_LazySearch(benchmark::State& state) {
+  cspace::Rng rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Eigen::Vector2d> discs(200);
+  for (auto& c : discs) c = {u(rng), u(rng)};
+  const auto crosses = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    for (const auto& c : discs) {
+      const Eigen::Vector2d ab = b - a;
+      const double t = ab.squaredNorm() > 0 ? std::clamp((c - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      if ((a + t * ab - c).norm() < 0.02) return true;
+    }
+    return false;
+  };
+  planners::Roadmap roadmap;
+  for (const Eigen::Vector2d corner : {Eigen::Vector2d(0.01, 0.01), Eigen::Vector2d(0.99, 0.99)})
+    roadmap.addNode(corner);
+  while (roadmap.numNodes() < 300) {
+    const Eigen::Vector2d q(u(rng), u(rng));
+    if (!crosses(q, q)) roadmap.addNode(q);
+  }
+  const planners::NearestNeighbors nn(roadmap.nodes(), Eigen::Vector2d::Ones());
+  std::set<std::pair<int, int>> blocked;  // edges (i < j) that cross a disc
+  for (int i = 0; i < roadmap.numNodes(); ++i)
+    for (int j : nn.nearest(roadmap.node(i), 11))
+      if (j > i && !roadmap.hasEdge(i, j)) {
+        roadmap.addEdge(i, j, (roadmap.node(i) - roadmap.node(j)).norm(), false);
+        if (crosses(roadmap.node(i), roadmap.node(j))) blocked.insert({i, j});
+      }
+  const auto metric = [&](int v) { return (roadmap.node(v) - roadmap.node(1)).norm(); };
+  planners::Roadmap lazy;
+  long searches = 0, expansions = 0;
+  for (auto _ : state) {
+    lazy = roadmap;
+    planners::RepeatedSearch adaptive(lazy, 0, 1, metric);
+    std::vector<std::pair<int, double>> expanded;
+    for (bool free = false; !free;) {
+      expanded.clear();
+      const auto path = state.range(0) == 1 ? adaptive.next() : lazy.shortestPath(0, 1, metric, &expanded);
+      ++searches;
+      expansions += static_cast<long>(expanded.size());
+      free = true;
+      for (size_t i = 0; i + 1 < path.size(); ++i)
+        if (blocked.count(std::minmax(path[i], path[i + 1]))) lazy.removeEdge(path[i], path[i + 1]), free = false;
+    }
+    expansions += adaptive.expansions();
+  }
+  const auto per_query = [&](long n) { return static_cast<double>(n) / static_cast<double>(state.iterations()); };
+  state.counters["searches"] = per_query(searches);
+  state.counters["expansions"] = per_query(expansions);
+}
+BENCHMARK(BM_LazySearch)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The eager pass over Fig 4.4's SVMP milestones (the file's parameters, seed 1, after its first query
 // centred the deferred ones): the thesis' MakeRoadmap in node order (connectMilestones, arg 0) or
