@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 #include <queue>
-#include <utility>
 
 namespace svmp::planners {
 
@@ -127,8 +126,8 @@ void Roadmap::clear() {
   num_edges_ = 0;
 }
 
-std::vector<int> Roadmap::shortestPath(int from, int to, const std::function<double(int)>& heuristic,
-                                       std::vector<std::pair<int, double>>* expanded) const {
+std::vector<int> Roadmap::shortestPath(int from, int to,
+                                       const std::function<double(int)>& heuristic) const {
   const int n = numNodes();
   std::vector<double> g(n, std::numeric_limits<double>::infinity());
   std::vector<int> parent(n, -1);
@@ -142,7 +141,6 @@ std::vector<int> Roadmap::shortestPath(int from, int to, const std::function<dou
     open.pop();
     if (closed[u]) continue;
     closed[u] = 1;
-    if (expanded) expanded->emplace_back(u, g[u]);
     if (u == to) break;
     for (const Edge& e : adjacency_[u]) {
       const double candidate = g[u] + e.cost;
@@ -157,27 +155,6 @@ std::vector<int> Roadmap::shortestPath(int from, int to, const std::function<dou
   std::vector<int> path;
   for (int v = to; v != -1; v = parent[v]) path.push_back(v);
   std::reverse(path.begin(), path.end());
-  return path;
-}
-
-RepeatedSearch::RepeatedSearch(const Roadmap& roadmap, int from, int to, std::function<double(int)> lower_bound)
-    : roadmap_(roadmap), from_(from), to_(to), lower_bound_(std::move(lower_bound)),
-      heuristic_(roadmap.numNodes(), -1.0) {}
-
-std::vector<int> RepeatedSearch::next() {
-  expanded_.clear();
-  std::vector<int> path = roadmap_.shortestPath(
-      from_, to_,
-      [this](int v) {
-        double& h = heuristic_[v];
-        if (h < 0) h = lower_bound_(v);
-        return h;
-      },
-      &expanded_);
-  expansions_ += static_cast<long>(expanded_.size());
-  if (path.empty()) return path;
-  const double found = expanded_.back().second;
-  for (const auto& [v, cost] : expanded_) heuristic_[v] = std::max(heuristic_[v], found - cost);
   return path;
 }
 

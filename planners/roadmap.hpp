@@ -8,7 +8,6 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
-#include <utility>
 #include <vector>
 
 namespace svmp::planners {
@@ -67,10 +66,8 @@ class Roadmap {
   bool connected(int a, int b) { return components().same(a, b); }
 
   // Shortest path from `from` to `to` as node indices (empty when none). `heuristic(i)` must not
-  // overestimate the remaining cost to `to` (the metric distance does not). `expanded`, when given,
-  // receives each node the search expanded with its cost from `from`, in order (`to` last).
-  std::vector<int> shortestPath(int from, int to, const std::function<double(int)>& heuristic,
-                                std::vector<std::pair<int, double>>* expanded = nullptr) const;
+  // overestimate the remaining cost to `to` (the metric distance does not).
+  std::vector<int> shortestPath(int from, int to, const std::function<double(int)>& heuristic) const;
 
  private:
   const Edge* find(int a, int b) const;  // the edge a-b in a's list, or nullptr
@@ -83,28 +80,6 @@ class Roadmap {
   std::vector<std::uint64_t> blocked_;  // sorted keys of removed pairs (pairKey)
   bool stale_ = false;  // an edge was removed since components_ was built
   int num_edges_ = 0;
-};
-
-// Shortest paths between two nodes of a roadmap searched again and again while edges are only
-// removed between the searches (a lazy query removes the edges each path fails on). Adaptive A*
-// (Koenig and Likhachev 2005): a search leaves every node it expanded the heuristic "found cost less
-// the node's cost from `from`", which stays admissible and consistent as removals only lengthen
-// paths, so each later search expands fewer nodes than with `lower_bound` alone.
-class RepeatedSearch {
- public:
-  // `lower_bound(i)`: an admissible, consistent heuristic to `to` (the metric distance), asked once a node.
-  RepeatedSearch(const Roadmap& roadmap, int from, int to, std::function<double(int)> lower_bound);
-  // A shortest path on the roadmap as it is now (node indices), empty when there is none.
-  std::vector<int> next();
-  long expansions() const { return expansions_; }  // nodes expanded by all searches so far
-
- private:
-  const Roadmap& roadmap_;
-  int from_, to_;
-  std::function<double(int)> lower_bound_;
-  std::vector<double> heuristic_;  // per node; negative until first asked
-  std::vector<std::pair<int, double>> expanded_;
-  long expansions_ = 0;
 };
 
 }  // namespace svmp::planners

@@ -108,10 +108,15 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
                             int& checks, double& certify_ms) {
   const int shared = milestones ? milestones->numNodes() : 0;
   const Eigen::VectorXd target = roadmap.node(to);
-  // The searches repeat after each removal (hundreds of times on the arms' lazy roadmaps).
-  RepeatedSearch search(roadmap, from, to, [&](int v) { return context.space.distance(roadmap.node(v), target); });
+  // The searches repeat after each removal (hundreds of times on the arms' lazy roadmaps); the
+  // heuristic of a node does not change between them.
+  std::vector<double> heuristic(roadmap.numNodes(), -1.0);
   for (;;) {
-    const auto nodes = search.next();
+    const auto nodes = roadmap.shortestPath(from, to, [&](int v) {
+      double& h = heuristic[v];
+      if (h < 0) h = context.space.distance(roadmap.node(v), target);
+      return h;
+    });
     if (nodes.empty()) return nodes;
     // One pass over the path's edges not yet `done`: each that passes `test` is marked (by `mark`,
     // when given), each that fails is removed (from the shared roadmap too). `whole`: the pass goes

@@ -95,41 +95,6 @@ TEST(Roadmap, AStarWithZeroHeuristicMatchesFloydWarshall) {
   }
 }
 
-// A lazy query's searches: after each removal of an edge of the last path, the next path is a
-// shortest one of what is left (Floyd-Warshall), and Adaptive A*'s learned heuristic expands fewer
-// nodes than A* with the metric alone, which would expand as many if the update were wrong or absent.
-TEST(Roadmap, RepeatedSearchStaysShortestAsEdgesAreRemovedAndExpandsFewer) {
-  std::mt19937_64 rng(3);
-  long plain_expansions = 0, adaptive_expansions = 0;
-  for (int trial = 0; trial < 20; ++trial) {
-    RandomGraph g = randomGraph(rng, 30, 0.3, true);
-    const int from = static_cast<int>(rng() % 30), to = static_cast<int>(rng() % 30);
-    const auto metric = [&](int v) { return (g.positions[v] - g.positions[to]).norm(); };
-    RepeatedSearch search(g.roadmap, from, to, metric);
-    for (int removal = 0;; ++removal) {
-      SCOPED_TRACE(testing::Message() << "trial " << trial << " removal " << removal);
-      const auto path = search.next();
-      std::vector<std::pair<int, double>> expanded;
-      const auto plain = g.roadmap.shortestPath(from, to, metric, &expanded);
-      plain_expansions += static_cast<long>(expanded.size());
-      const double shortest = floydWarshall(g.best)[from][to];
-      ASSERT_EQ(path.empty(), shortest == kInf);
-      ASSERT_EQ(plain.empty(), path.empty());
-      if (path.empty() || path.size() == 1) break;
-      double cost = 0;
-      for (size_t i = 0; i + 1 < path.size(); ++i) cost += g.best[path[i]][path[i + 1]];
-      ASSERT_NEAR(cost, shortest, 1e-9);
-      const size_t at = rng() % (path.size() - 1);
-      const int a = path[at], b = path[at + 1];
-      while (g.roadmap.hasEdge(a, b)) g.roadmap.removeEdge(a, b);
-      g.best[a][b] = g.best[b][a] = kInf;
-    }
-    adaptive_expansions += search.expansions();
-  }
-  EXPECT_LT(adaptive_expansions, 0.9 * plain_expansions)
-      << "adaptive " << adaptive_expansions << ", metric alone " << plain_expansions;
-}
-
 TEST(Roadmap, CountsEdgesAndClears) {
   Roadmap r;
   r.addNode(Eigen::Vector2d(0, 0));
