@@ -197,12 +197,15 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
   std::vector<std::map<std::string, std::string>> parameters;
   auto planners = makePlanners(scenario, options, world.context, &parameters);
   std::vector<PlannerRuns> results;
+  for (size_t p = 0; p < planners.size(); ++p) results.push_back({options.planners[p], {}, parameters[p]});
   const auto& queries = scenario.queries;
-  for (size_t p = 0; p < planners.size(); ++p) {
-    PlannerRuns runs{options.planners[p], {}, parameters[p]};
-    planners::Planner& planner = *planners[p];
-    for (int r = 0; r < options.runs; ++r) {
-      const std::uint64_t seed = options.seed + r;
+  // Seed by seed, every planner in turn: a change of load while the run lasts slows each planner
+  // alike, so their ratios stay fair (one planner's runs all after another's would not).
+  for (int r = 0; r < options.runs; ++r) {
+    const std::uint64_t seed = options.seed + r;
+    for (size_t p = 0; p < planners.size(); ++p) {
+      PlannerRuns& runs = results[p];
+      planners::Planner& planner = *planners[p];
       // The limit holds for each solve: the build, and each query on its own. A limit for the whole run
       // would let one query that no planner solves use it up, and every later query fail untried.
       const auto limit = [&] {
@@ -262,7 +265,6 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         if (queries.size() > 1 && !planner.built()) break;  // the build failed: no query can be answered
       }
     }
-    results.push_back(std::move(runs));
   }
   return results;
 }

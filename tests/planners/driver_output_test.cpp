@@ -1,6 +1,7 @@
 // What the driver writes: the JSON of results and of paths parse back (yaml-cpp reads JSON) with the
 // same numbers and waypoints, a scenario name with quotes stays valid JSON, OMPL matrix files hold one
-// configuration a line, and a hostile name cannot write outside the output directory.
+// configuration a line, a hostile name cannot write outside the output directory, and planners take
+// turns seed by seed.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -204,6 +205,36 @@ TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
   }
   printTable(scenario, options, results, table);
   EXPECT_NE(table.str().find("12 queries per run, one build per run"), std::string::npos) << table.str();
+}
+
+// Seed by seed, every planner in turn (so load that changes during a run slows each alike), and each
+// planner's results are those it gives when run alone.
+TEST(DriverOutput, PlannersRunSeedBySeedAndGiveWhatTheyGiveAlone) {
+  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
+  const cspace::Scenario scenario = cspace::loadScenario(path);
+  DriverOptions options;
+  options.scenario = path;
+  options.planners = {"svmp", "prm"};
+  options.runs = 2;
+  std::ostringstream log;
+  const auto together = runExperiment(scenario, options, log);
+  const std::string text = log.str();
+  size_t at = 0;
+  for (const std::string line : {"svmp seed 1:", "prm seed 1:", "svmp seed 2:", "prm seed 2:"}) {
+    at = text.find(line, at);
+    ASSERT_NE(at, std::string::npos) << line << " not in order in\n" << text;
+  }
+  for (size_t p = 0; p < 2; ++p) {
+    DriverOptions alone_options = options;
+    alone_options.planners = {options.planners[p]};
+    std::ostringstream quiet;
+    const auto alone = runExperiment(scenario, alone_options, quiet);
+    ASSERT_EQ(together[p].runs.size(), alone[0].runs.size());
+    for (size_t r = 0; r < alone[0].runs.size(); ++r) {
+      EXPECT_EQ(together[p].runs[r].result.collision_checks, alone[0].runs[r].result.collision_checks);
+      EXPECT_EQ(together[p].runs[r].result.path, alone[0].runs[r].result.path);
+    }
+  }
 }
 
 TEST(DriverOutput, FileNamesCannotLeaveTheirDirectory) {
