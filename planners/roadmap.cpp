@@ -82,6 +82,12 @@ int Roadmap::dropUnchecked() {
   return dropped / 2;
 }
 
+bool Roadmap::hasUnchecked() const {
+  return std::any_of(adjacency_.begin(), adjacency_.end(), [](const std::vector<Edge>& list) {
+    return std::any_of(list.begin(), list.end(), [](const Edge& e) { return !e.checked; });
+  });
+}
+
 void Roadmap::recomputeComponents() {
   components_ = UnionFind(numNodes());
   stale_ = false;

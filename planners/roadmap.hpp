@@ -48,6 +48,7 @@ class Roadmap {
   bool isBlocked(int a, int b) const;
   // Removes every unchecked edge; returns how many.
   int dropUnchecked();
+  bool hasUnchecked() const;
   void markChecked(int a, int b);
   void markCertified(int a, int b);  // certified implies checked
   bool isChecked(int a, int b) const;

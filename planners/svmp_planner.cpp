@@ -13,6 +13,7 @@
 #include "planners/planner_registry.hpp"
 #include "planners/class_colouring.hpp"
 #include "planners/roadmap_builder.hpp"
+#include "planners/tree_connect.hpp"
 
 namespace svmp::planners {
 
@@ -34,6 +35,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.repair_rounds = static_cast<int>(params.getInt("repair_rounds", o.repair_rounds, 0, 1000));
   o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
   o.repair_trees = params.getBool("repair_trees", o.repair_trees);
+  o.lazy_trees = static_cast<int>(params.getInt("lazy_trees", o.lazy_trees, 0, 1000000));
   o.tree_range = params.getDouble("tree_range", o.tree_range, -1, 1e6);
   o.interior_fraction = params.getDouble("interior_fraction", o.interior_fraction, 0, 1);
   o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
@@ -50,7 +52,8 @@ std::string SvmpOptions::validate() const {
   if (!positiveOrDerived(sigma)) return "sigma must be positive, got " + std::to_string(sigma);
   if (!(C > 0) || !std::isfinite(C)) return "C must be positive, got " + std::to_string(C);
   if (!positiveOrDerived(step)) return "step must be positive, got " + std::to_string(step);
-  if (samples_per_tree < 1 || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0)
+  if (samples_per_tree < 1 || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0 ||
+      lazy_trees < 0)
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2)";
   if (!positiveOrDerived(tree_range)) return "tree_range must be positive, got " + std::to_string(tree_range);
   if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
@@ -107,6 +110,7 @@ void SvmpPlanner::clear() {
   grown_by_trees_.clear();
   nn_.reset();
   uncentred_.clear();
+  lazy_trees_tried_ = false;
 }
 
 int SvmpPlanner::supportVectors() const {
@@ -406,6 +410,26 @@ void SvmpPlanner::fillCounters(PlanResult& result) const {
   result.support_vectors = supportVectors();
 }
 
+bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng,
+                              const Termination& stop, PlanResult& result) {
+  if (options_.lazy_trees == 0) return false;
+  std::vector<int> start_side, goal_side;
+  for (int i = 0; i < with_query.numNodes(); ++i) {
+    if (with_query.connected(i, start_node)) start_side.push_back(i);
+    if (with_query.connected(i, goal_node)) goal_side.push_back(i);
+  }
+  connectByTrees(with_query, start_side, goal_side, context_, options_.tree_range, options_.lazy_trees, rng, stop);
+  if (!with_query.connected(start_node, goal_node)) return false;
+  int checks = 0;
+  const std::vector<int> nodes = provenPath(with_query, start_node, goal_node, context_, &roadmap_,
+                                            checks, result.times.certify_ms);
+  if (nodes.empty()) return false;
+  for (int v : nodes) result.path.push_back(with_query.node(v));
+  result.certified = context_.certifier != nullptr;
+  result.status = PlanStatus::kSolved;
+  return true;
+}
+
 void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
                          PlanResult& result) {
   const auto t0 = Clock::now();
@@ -443,6 +467,10 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
         --round;
         continue;
       }
+    }
+    if (round == 0 && roadmap_.hasUnchecked() && !lazy_trees_tried_) {
+      lazy_trees_tried_ = true;
+      if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, tree_rng, stop, result)) break;
     }
     if (round == 0 && roadmap_.dropUnchecked() > 0) {
       connectShortestFirst(roadmap_, *nn_, context_, options_.k, stop);

@@ -49,6 +49,12 @@ struct SvmpOptions {
   // tunnels whose components were still growing; docs/reproduction.md, "Problems made after the defaults").
   int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
+  // Before the eager pass (once per build, when the lazy roadmap and its centred nodes did not answer
+  // a query), RRT-Connect trees between the start's and the goal's components of the lazy roadmap for
+  // up to lazy_trees samples (0: none); the eager pass runs only when they do not join the two. On the
+  // arms the eager pass costs 25k-65k checks where trees join in a few thousand (panda_shelf 1.5x,
+  // Fig 4.4 1.1x faster; docs/reproduction.md, twelfth session).
+  int lazy_trees = 300;
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
   // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
   // nodes): repair_samples uniform samples, steps of
@@ -158,6 +164,10 @@ class SvmpPlanner final : public Planner {
   // q is centred in its own interval when that is bounded within sigma on both sides (a passage
   // narrower than 2 sigma), else returned as it is.
   std::optional<Eigen::VectorXd> centreAlongNormal(int k, const Eigen::VectorXd& q) const;
+  // SvmpOptions::lazy_trees on the query roadmap: true, with result's path, when the trees join the
+  // start's and the goal's components and a path between them holds its proofs.
+  bool joinByTrees(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng, const Termination& stop,
+                   PlanResult& result);
 
   SvmpOptions options_;
   planners::ObstacleSamples samples_;
@@ -168,6 +178,7 @@ class SvmpPlanner final : public Planner {
   std::vector<bool> grown_by_trees_;  // roadmap_ nodes the repair's trees added (by index; shorter: no)
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
   std::vector<std::pair<Eigen::VectorXd, int>> uncentred_;  // deferred descent ends and their classes
+  bool lazy_trees_tried_ = false;  // this build's trees before the eager pass (SvmpOptions::lazy_trees)
 };
 
 }  // namespace svmp::planners

@@ -258,6 +258,38 @@ TEST(RoadmapQuery, SvmpCentresCollidingDescentEndsWhenAQueryFirstNeedsThem) {
   EXPECT_EQ(milestoneSet(d), all);
 }
 
+// Trees before the eager pass (SvmpOptions::lazy_trees), on Fig 4.4's seeds whose lazy roadmap does not
+// answer: the trees join the start's and the goal's components, so the roadmap keeps its unchecked
+// edges (no eager pass ran; without the trees it did), with fewer checks, and the path is certified and
+// free when re-checked at a quarter of the resolution.
+TEST(RoadmapQuery, SvmpTreesJoinWhatTheLazyRoadmapDoesNotBeforeAnEagerPass) {
+  auto w = makeWorld(test::readScenario("thesis_fig4_4.yaml"));
+  w->certify();
+  cspace::ParameterSet without_trees = w->scenario.paramsFor("svmp");
+  without_trees.set("lazy_trees", "0");
+  int joined = 0;
+  for (std::uint64_t seed : {4, 8, 9}) {
+    auto with = w->planner("svmp");
+    auto without = makePlanner("svmp", w->context, without_trees);
+    const PlanResult a = with->solve(w->query(), seed), b = without->solve(w->query(), seed);
+    ASSERT_TRUE(a.solved() && b.solved()) << "seed " << seed;
+    EXPECT_TRUE(a.certified);
+    EXPECT_FALSE(dynamic_cast<const SvmpPlanner&>(*without).roadmap().hasUnchecked()) << "the eager pass ran";
+    if (!dynamic_cast<const SvmpPlanner&>(*with).roadmap().hasUnchecked()) continue;
+    ++joined;
+    EXPECT_LT(a.collision_checks, b.collision_checks) << "seed " << seed;
+    Eigen::VectorXd q(w->space.dim());
+    for (size_t i = 0; i + 1 < a.path.size(); ++i) {
+      const int steps = static_cast<int>(std::ceil(4 * w->space.distance(a.path[i], a.path[i + 1]) / w->scenario.resolution));
+      for (int s = 0; s <= steps; ++s) {
+        w->space.interpolate(a.path[i], a.path[i + 1], static_cast<double>(s) / std::max(steps, 1), q);
+        ASSERT_TRUE(w->checker.isValid(q)) << "seed " << seed << " segment " << i << " step " << s;
+      }
+    }
+  }
+  EXPECT_GE(joined, 2);
+}
+
 // A pair that no path joins (closedWall): the query fails after its
 // repair rounds, and the roadmap is the one it found, with the build's centred descent ends (above).
 // Those rounds' nodes filled both components; kept, they would slow every later query and make the
