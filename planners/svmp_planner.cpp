@@ -54,7 +54,8 @@ std::string SvmpOptions::validate() const {
   if (!positiveOrDerived(step)) return "step must be positive, got " + std::to_string(step);
   if (samples_per_tree < 1 || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0 ||
       lazy_trees < 0)
-    return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2)";
+    return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2, "
+           "repair_rounds and lazy_trees >= 0)";
   if (!positiveOrDerived(tree_range)) return "tree_range must be positive, got " + std::to_string(tree_range);
   if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
   if (kernel != "rbf" && kernel != "fk") return "kernel must be rbf or fk, got " + kernel;

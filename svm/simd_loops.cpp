@@ -96,6 +96,22 @@ SVMP_INLINE void reduceLanes(typename V<L>::D best, typename V<L>::D idx, double
   }
 }
 
+// Entries [t, m) of maxUpMinusYG one at a time, after the vector lanes were reduced into r.
+template <bool kUpdate>
+SVMP_INLINE void maxUpMinusYGTail(int t, int m, double* yG, const float* Ki, const float* Kj, double wi,
+                                  double wj, const double* up, ArgMax& r) {
+  for (; t < m; ++t) {
+    if constexpr (kUpdate)
+      yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
+    const double v = up[t] - yG[t];
+    if (v > r.value) {
+      r.value = v;
+      r.index = t;
+    }
+  }
+  if (r.value == -kInf) r.index = -1;
+}
+
 // max_t up[t] - yG[t] with its index; kUpdate: first yG[t] += wi Ki[t] + wj Kj[t] (the gradient
 // update), so the next iteration's i comes out of the same pass with the same lanes and tie rule.
 template <int L, bool kUpdate>
@@ -119,16 +135,7 @@ SVMP_INLINE ArgMax maxUpMinusYG(int m, double* yG, const float* Ki, const float*
   }
   ArgMax r{-kInf, -1};
   reduceLanes<L, true>(best, idx, r.value, r.index);
-  for (; t < m; ++t) {
-    if constexpr (kUpdate)
-      yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
-    const double v = up[t] - yG[t];
-    if (v > r.value) {
-      r.value = v;
-      r.index = t;
-    }
-  }
-  if (r.value == -kInf) r.index = -1;
+  maxUpMinusYGTail<kUpdate>(t, m, yG, Ki, Kj, wi, wj, up, r);
   return r;
 }
 
@@ -467,15 +474,7 @@ SVMP_AVX512 ArgMax updateGradientSelectIAvx512(int m, double* yG, const float* K
       r.value = lane_best[l];
       r.index = static_cast<int>(lane_idx[l]);
     }
-  for (; t < m; ++t) {
-    yG[t] += wi * static_cast<double>(Ki[t]) + wj * static_cast<double>(Kj[t]);
-    const double v = up[t] - yG[t];
-    if (v > r.value) {
-      r.value = v;
-      r.index = t;
-    }
-  }
-  if (r.value == -kInf) r.index = -1;
+  maxUpMinusYGTail<true>(t, m, yG, Ki, Kj, wi, wj, up, r);
   return r;
 }
 #pragma GCC diagnostic pop
