@@ -51,9 +51,10 @@ struct SvmpOptions {
   int repair_samples = 100;       // random configurations per repair round
   // Before the eager pass (once per build, when the lazy roadmap and its centred nodes did not answer
   // a query), RRT-Connect trees between the start's and the goal's components of the lazy roadmap for
-  // up to lazy_trees samples (0: none); the eager pass runs only when they do not join the two. On the
-  // arms the eager pass costs 25k-65k checks where trees join in a few thousand (panda_shelf 1.5x,
-  // Fig 4.4 1.1x faster; docs/reproduction.md, twelfth session).
+  // up to lazy_trees samples (0: none), their nodes linked lazily to their k nearest milestones; the
+  // eager pass runs only when they do not join the two. On the arms the eager pass costs 25k-65k
+  // checks where trees join in a few thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths shorter;
+  // docs/reproduction.md, twelfth session).
   int lazy_trees = 300;
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
   // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
