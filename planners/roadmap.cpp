@@ -88,6 +88,13 @@ bool Roadmap::hasUnchecked() const {
   });
 }
 
+std::vector<int> Roadmap::component(int node) {
+  std::vector<int> nodes;
+  for (int i = 0; i < numNodes(); ++i)
+    if (connected(i, node)) nodes.push_back(i);
+  return nodes;
+}
+
 void Roadmap::recomputeComponents() {
   components_ = UnionFind(numNodes());
   stale_ = false;

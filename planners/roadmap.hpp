@@ -65,6 +65,7 @@ class Roadmap {
     return components_;
   }
   bool connected(int a, int b) { return components().same(a, b); }
+  std::vector<int> component(int node);  // every node connected to `node`, ascending
 
   // Shortest path from `from` to `to` as node indices (empty when none). `heuristic(i)` must not
   // overestimate the remaining cost to `to` (the metric distance does not).

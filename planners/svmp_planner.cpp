@@ -414,19 +414,16 @@ void SvmpPlanner::fillCounters(PlanResult& result) const {
 bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng,
                               const Termination& stop, PlanResult& result) {
   if (options_.lazy_trees == 0) return false;
-  std::vector<int> start_side, goal_side;
-  for (int i = 0; i < with_query.numNodes(); ++i) {
-    if (with_query.connected(i, start_node)) start_side.push_back(i);
-    if (with_query.connected(i, goal_node)) goal_side.push_back(i);
-  }
-  connectByTrees(with_query, start_side, goal_side, context_, options_.tree_range, options_.lazy_trees, rng, stop);
+  connectByTrees(with_query, with_query.component(start_node), with_query.component(goal_node), context_,
+                 options_.tree_range, options_.lazy_trees, rng, stop);
   if (!with_query.connected(start_node, goal_node)) return false;
   // The trees' nodes are linked lazily to their k nearest milestones, as the lazy roadmap's own: the
   // search then leaves the trees' detours where a milestone offers a shorter way (paths 9-28% shorter
-  // on the gaps and the Panda files, docs/reproduction.md, twelfth session).
+  // on the gaps and the Panda files, docs/reproduction.md, twelfth session). The nodes are new, so no
+  // pair of theirs is blocked yet.
   for (int v = std::max(start_node, goal_node) + 1; v < with_query.numNodes(); ++v)
     for (int j : nn_->nearest(with_query.node(v), options_.k))
-      if (!with_query.hasEdge(v, j) && !with_query.isBlocked(v, j))
+      if (!with_query.hasEdge(v, j))
         with_query.addEdge(v, j, context_.space.distance(with_query.node(v), with_query.node(j)), false);
   int checks = 0;
   const std::vector<int> nodes = provenPath(with_query, start_node, goal_node, context_, &roadmap_,
@@ -476,7 +473,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
         continue;
       }
     }
-    if (round == 0 && roadmap_.hasUnchecked() && !lazy_trees_tried_) {
+    if (round == 0 && !lazy_trees_tried_ && roadmap_.hasUnchecked()) {
       lazy_trees_tried_ = true;
       if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, tree_rng, stop, result)) break;
     }

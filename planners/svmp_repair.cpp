@@ -185,13 +185,9 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   };
   const auto growTrees = [&] {
     const int first = roadmap_.numNodes();
-    std::vector<int> start_tree, goal_tree;
-    for (int j = 0; j < first; ++j) {
-      if (roadmap_.connected(j, start_root)) start_tree.push_back(j);
-      if (roadmap_.connected(j, goal_side.front())) goal_tree.push_back(j);
-    }
-    const TreeConnectResult trees = connectByTrees(roadmap_, start_tree, goal_tree, context_, options_.tree_range,
-                                                   options_.repair_samples, tree_rng, stop);
+    const TreeConnectResult trees =
+        connectByTrees(roadmap_, roadmap_.component(start_root), roadmap_.component(goal_side.front()), context_,
+                       options_.tree_range, options_.repair_samples, tree_rng, stop);
     grown_by_trees_.resize(first, false);
     grown_by_trees_.resize(roadmap_.numNodes(), true);
     if (trees.added > 0) {

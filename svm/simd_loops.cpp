@@ -464,16 +464,8 @@ SVMP_AVX512 ArgMax updateGradientSelectIAvx512(int m, double* yG, const float* K
   }
   if (t + 8 <= m) updateSelectIStep(t, tv, yG, Ki, Kj, vwi, vwj, up, best_a, idx_a), t += 8;
   ArgMax r{-kInf, -1};
-  alignas(64) double lane_best[16], lane_idx[16];
-  _mm512_store_pd(lane_best, best_a);
-  _mm512_store_pd(lane_best + 8, best_b);
-  _mm512_store_pd(lane_idx, idx_a);
-  _mm512_store_pd(lane_idx + 8, idx_b);
-  for (int l = 0; l < 16; ++l)
-    if (lane_best[l] > r.value || (lane_best[l] == r.value && lane_idx[l] < r.index)) {
-      r.value = lane_best[l];
-      r.index = static_cast<int>(lane_idx[l]);
-    }
+  reduceLanes<8, true>(best_a, idx_a, r.value, r.index);
+  reduceLanes<8, true>(best_b, idx_b, r.value, r.index);
   maxUpMinusYGTail<true>(t, m, yG, Ki, Kj, wi, wj, up, r);
   return r;
 }
