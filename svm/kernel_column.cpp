@@ -1,5 +1,6 @@
 #include "svm/kernel_column.hpp"
 
+#include "svm/shared_columns.hpp"
 #include "svm/simd_loops.hpp"
 
 #include <algorithm>
@@ -17,12 +18,17 @@ KernelColumns::KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel)
     : KernelColumns(X, kernel, identityOrder(X.cols())) {}
 
 KernelColumns::KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel,
-                             const std::vector<int>& order)
+                             const std::vector<int>& order, SharedColumns* shared)
     : n_(static_cast<int>(X.cols())),
       d_(static_cast<int>(X.rows())),
       kernel_(kernel),
       coords_(static_cast<size_t>(X.rows()) * X.cols()),
-      diag_(X.cols()) {
+      diag_(X.cols()),
+      shared_(shared) {
+  if (shared_) {
+    sample_ = order;
+    in_order_ = std::is_sorted(order.begin(), order.end());
+  }
   for (int t = 0; t < n_; ++t) {
     const double* x = X.col(order[t]).data();
     for (int k = 0; k < d_; ++k) coords_[static_cast<size_t>(k) * n_ + t] = x[k];
@@ -41,6 +47,10 @@ void KernelColumns::swap(int i, int j) {
     std::swap(row[i], row[j]);
   }
   std::swap(diag_[i], diag_[j]);
+  if (shared_) {
+    std::swap(sample_[i], sample_[j]);
+    in_order_ = false;
+  }
 }
 
 template <typename Out>
@@ -72,7 +82,17 @@ void KernelColumns::compute(const double* z, int begin, int end, double* out) co
   computeRange(z, begin, end, out);
 }
 
+const float* KernelColumns::inPlace(int i) const {
+  return in_order_ ? shared_->column(i) : nullptr;
+}
+
 void KernelColumns::column(int i, int begin, int end, float* out) const {
+  if (shared_) {
+    const float* all = shared_->column(sample_[i]);
+    const int* sample = sample_.data();
+    for (int t = begin; t < end; ++t) out[t - begin] = all[sample[t]];
+    return;
+  }
   double z[64];
   std::vector<double> big;
   double* zp = z;

@@ -7,7 +7,8 @@
 // from differences rather than |x|^2 + |z|^2 - 2x'z: in this layout both cost the same and
 // differences do not cancel for near points, so no squared norms are needed for RBF; the diagonal
 // k(x_i, x_i) is precomputed for every kernel. swap() keeps the storage in the solver's (shrinking)
-// order.
+// order. Given SharedColumns of the same samples (svm/shared_columns.hpp), column() copies from them
+// in that order instead of computing.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,11 +21,15 @@ namespace svmp::svm {
 // 0, 1, ..., n-1: the sample order of a solve that starts afresh.
 std::vector<int> identityOrder(Eigen::Index n);
 
+class SharedColumns;
+
 class KernelColumns {
  public:
   KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel);
-  // Sample order[t] of X at position t (a permutation of the columns of X).
-  KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel, const std::vector<int>& order);
+  // Sample order[t] of X at position t (a permutation of the columns of X). shared, when given,
+  // holds X's columns (SharedColumns::matches) and outlives this.
+  KernelColumns(const Eigen::MatrixXd& X, const Kernel& kernel, const std::vector<int>& order,
+                SharedColumns* shared = nullptr);
 
   int size() const { return n_; }
   int dim() const { return d_; }
@@ -39,6 +44,9 @@ class KernelColumns {
   void compute(const double* z, int begin, int end, double* out) const;
   // Column of sample i (z = x_i).
   void column(int i, int begin, int end, float* out) const;
+  // With shared columns while every sample is still at its own position: column i itself, whole,
+  // to be read in place (no copy, no cache). Otherwise nullptr.
+  const float* inPlace(int i) const;
 
   void swap(int i, int j);
 
@@ -53,6 +61,9 @@ class KernelColumns {
   Kernel kernel_;
   std::vector<double> coords_;  // d x n, row k holds coordinate k of every sample
   std::vector<double> diag_;
+  SharedColumns* shared_ = nullptr;
+  std::vector<int> sample_;  // with shared_: the sample at each position
+  bool in_order_ = false;    // with shared_: sample_[t] == t for every t
 };
 
 }  // namespace svmp::svm

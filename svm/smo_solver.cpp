@@ -9,6 +9,7 @@
 
 #include "svm/kernel_cache.hpp"
 #include "svm/kernel_column.hpp"
+#include "svm/shared_columns.hpp"
 #include "svm/simd_loops.hpp"
 #include "svm/smo_parallel.hpp"
 #include "svm/solver_workspace.hpp"
@@ -118,6 +119,7 @@ class SmoSolver {
   }
 
   const float* column(int i, int len) {
+    if (const float* whole = data_.inPlace(i)) return whole;
     int filled = 0;
     float* col = cache_.request(i, len, &filled);
     if (filled < len) {
@@ -511,8 +513,9 @@ std::string SolverResult::report() const {
 
 SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
-                         const WarmStart* warm, SolverWorkspace* workspace) {
+                         const WarmStart* warm, SolverWorkspace* workspace, SharedColumns* shared) {
   validateProblem(X, y, C, kernel, opt);
+  if (shared != nullptr && !shared->matches(X, kernel)) fail("shared columns of other samples or another kernel");
   if (warm != nullptr)
     if (const std::string w = warm->validate(X.cols(), X.rows()); !w.empty()) fail(w);
   RetainedLayout layout;
@@ -523,7 +526,7 @@ SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
     cache = std::make_unique<KernelCache>(static_cast<int>(X.cols()), opt.cache_mb);
     layout.order = identityOrder(X.cols());
   }
-  KernelColumns data(X, kernel, layout.order);
+  KernelColumns data(X, kernel, layout.order, shared);
   SmoSolver solver(data, *cache, layout.order, y, C, opt);
   WarmStartCounts counts;
   if (warm != nullptr) {

@@ -21,6 +21,8 @@
 
 namespace svmp::svm {
 
+class SharedColumns;
+
 struct SolverOptions {
   double eps = 1e-3;                 // stopping tolerance on the maximal violating pair gap
   long max_iterations = 10'000'000;  // reported as SolverStatus::kIterationLimit when reached
@@ -61,10 +63,13 @@ struct SolverResult {
 // Throws std::invalid_argument for bad input (sizes, NaN/Inf, labels not +-1, one class only,
 // C <= 0, bad kernel parameters, bad options, inconsistent warm start). With a workspace, a warm
 // start from the workspace's last solve keeps its cached kernel columns (svm/solver_workspace.hpp);
-// the result is the same optimum either way.
+// the result is the same optimum either way. With `shared` (built from X and kernel), the kernel
+// columns come from there (svm/shared_columns.hpp): problems over the same samples compute each
+// column once between them.
 SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
                          const Eigen::VectorXd& C, const Kernel& kernel, const SolverOptions& opt,
-                         const WarmStart* warm = nullptr, SolverWorkspace* workspace = nullptr);
+                         const WarmStart* warm = nullptr, SolverWorkspace* workspace = nullptr,
+                         SharedColumns* shared = nullptr);
 
 // Warm start for a new problem from the previous problem (X, y, C) and its solution.
 // previous_index[i] is the previous index of new sample i, or -1 for an added sample.

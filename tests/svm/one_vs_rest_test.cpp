@@ -12,22 +12,55 @@
 namespace svmp::svm {
 namespace {
 
+// Each class is the binary problem solved alone with the options the training used: the first with
+// shrinking, the others without it when they shared columns (svm/shared_columns.hpp). The same
+// whatever the thread count.
+void expectSeparateSolves(const testing::BallProblem& p, const Kernel& k, double C,
+                          const std::map<int, double>& w, const SolverOptions& opt, long long shared) {
+  const OneVsRestModel one = trainOneVsRest(p.X, p.labels, k, C, w, opt, 1);
+  const OneVsRestModel two = trainOneVsRest(p.X, p.labels, k, C, w, opt, 2);
+  EXPECT_EQ(one.shared_columns, shared);
+  EXPECT_EQ(two.shared_columns, shared);
+  for (size_t c = 0; c < one.classes.size(); ++c) {
+    Eigen::VectorXd y, sample_C;
+    oneVsRestProblem(p.labels, one.classes[c], C, w, y, sample_C);
+    SolverOptions alone = opt;
+    alone.shrinking = c == 0 || shared == 0;
+    const SolverResult r = solveBinary(p.X, y, sample_C, k, alone);
+    EXPECT_NEAR(one.solutions[c].objective, r.objective, 1e-9 * std::abs(r.objective)) << c;
+    EXPECT_NEAR(two.solutions[c].objective, r.objective, 1e-9 * std::abs(r.objective)) << c;
+    EXPECT_EQ(one.models[c].numSupportVectors(), r.support_vectors) << c;
+    EXPECT_EQ(two.models[c].numSupportVectors(), r.support_vectors) << c;
+  }
+}
+
+// Three classes in 3-D whose problems each need a small part of the kernel matrix: no sharing.
 TEST(OneVsRest, MatchesSeparateBinaryProblemsAndThreadCounts) {
   const auto p = testing::makeBallProblem(3, 2500, 3, 31);
   const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
   const std::map<int, double> w = {{1, 2.0}, {3, 0.5}};
-  const OneVsRestModel one = trainOneVsRest(p.X, p.labels, k, 5.0, w, {}, 1);
-  const OneVsRestModel two = trainOneVsRest(p.X, p.labels, k, 5.0, w, {}, 2);
-  ASSERT_EQ(one.classes, (std::vector<int>{1, 2, 3}));
-  for (int c = 0; c < 3; ++c) {
-    Eigen::VectorXd y, C;
-    oneVsRestProblem(p.labels, one.classes[c], 5.0, w, y, C);
-    EXPECT_EQ(C[0], 10.0);  // sample 0 is class 1
-    const SolverResult r = solveBinary(p.X, y, C, k, {});
-    EXPECT_NEAR(one.solutions[c].objective, r.objective, 1e-9 * std::abs(r.objective));
-    EXPECT_NEAR(two.solutions[c].objective, r.objective, 1e-9 * std::abs(r.objective));
-    EXPECT_EQ(one.models[c].numSupportVectors(), r.support_vectors);
-  }
+  const OneVsRestModel ovr = trainOneVsRest(p.X, p.labels, k, 5.0, w, {}, 1);
+  ASSERT_EQ(ovr.classes, (std::vector<int>{1, 2, 3}));
+  Eigen::VectorXd y, C;
+  oneVsRestProblem(p.labels, 1, 5.0, w, y, C);
+  EXPECT_EQ(C[0], 10.0);  // sample 0 is class 1
+  expectSeparateSolves(p, k, 5.0, w, {}, 0);
+}
+
+// Interleaved classes in 7-D (as an arm's C-obstacles): each problem needs most of the kernel
+// matrix, so the problems after the first share it, each column computed once. Without room for
+// the matrix in cache_mb they do not.
+TEST(OneVsRest, InterleavedClassesShareTheirColumns) {
+  const auto p = testing::makeBallProblem(7, 1200, 8, 33, 4, 0.2);
+  const Kernel k = Kernel::rbfFromSigma(0.1);  // about 800 support vectors a class, as panda_shelf's
+  const OneVsRestModel ovr = trainOneVsRest(p.X, p.labels, k, 100.0, {}, {}, 1);
+  ASSERT_EQ(ovr.classes.size(), 8u);
+  EXPECT_GT(ovr.shared_columns, 600);
+  EXPECT_LE(ovr.shared_columns, 1200);
+  expectSeparateSolves(p, k, 100.0, {}, {}, ovr.shared_columns);
+  SolverOptions small;
+  small.cache_mb = 5;  // 1,200^2 floats are 5.5 MB
+  expectSeparateSolves(p, k, 100.0, {}, small, 0);
 }
 
 TEST(OneVsRest, BadInputThrows) {

@@ -190,6 +190,38 @@ void BM_TrainOvr_libsvm(benchmark::State& state) {
   }
 }
 
+// Eight interleaved classes in 7-D, about 800 support vectors each (as panda_shelf's arm): the
+// problems after the first share their kernel columns (svm/shared_columns.hpp) when the matrix fits
+// in cache_mb (argument: 100, the default; 5 MB is too small, so each problem keeps its own cache).
+const BallProblem& interleaved() {
+  static const BallProblem p = testing::makeBallProblem(7, 1200, 8, 33, 4, 0.2);
+  return p;
+}
+constexpr double kInterleavedSigma = 0.1, kInterleavedC = 100;
+
+void BM_TrainOvrInterleaved_svmp(benchmark::State& state) {
+  const auto& p = interleaved();
+  SolverOptions opt;
+  opt.cache_mb = static_cast<double>(state.range(0));
+  OneVsRestModel m;
+  for (auto _ : state) m = trainOneVsRest(p.X, p.labels, Kernel::rbfFromSigma(kInterleavedSigma), kInterleavedC, {}, opt, 1);
+  long long entries = 0;
+  for (const auto& s : m.solutions) entries += s.kernel_entries;
+  state.counters["shared_columns"] = static_cast<double>(m.shared_columns);
+  state.counters["cached_entries"] = static_cast<double>(entries);
+}
+
+void BM_TrainOvrInterleaved_libsvm(benchmark::State& state) {
+  const auto& p = interleaved();
+  const double gamma = Kernel::rbfFromSigma(kInterleavedSigma).gamma;
+  for (auto _ : state)
+    for (int c = 1; c <= 8; ++c) {
+      const Eigen::VectorXd y = p.binary(c);
+      testing::LibsvmProblem prob(p.X, y);
+      benchmark::DoNotOptimize(testing::libsvmTrain(prob, y, gamma, kInterleavedC, 1e-3));
+    }
+}
+
 struct EvalCase {
   BinaryModel model;
   Eigen::MatrixXd queries;
@@ -296,6 +328,15 @@ int main(int argc, char** argv) {
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->Iterations(1);
+  benchmark::RegisterBenchmark("BM_TrainOvrInterleaved/svmp/d:7/n:1200", BM_TrainOvrInterleaved_svmp)
+      ->ArgName("cache_mb")
+      ->Arg(5)
+      ->Arg(100)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  benchmark::RegisterBenchmark("BM_TrainOvrInterleaved/libsvm/d:7/n:1200", BM_TrainOvrInterleaved_libsvm)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
   for (auto [name, fn] : {std::pair{"BM_Eval/full", &BM_Eval_full},
                           std::pair{"BM_Eval/truncated", &BM_Eval_truncated},
                           std::pair{"BM_Eval/libsvm", &BM_Eval_libsvm}}) {
