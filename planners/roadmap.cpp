@@ -73,13 +73,15 @@ void Roadmap::removeEdge(int a, int b) {
   stale_ = true;
 }
 
-int Roadmap::dropUnchecked() {
-  int dropped = 0;
-  for (auto& list : adjacency_)
-    dropped += static_cast<int>(std::erase_if(list, [](const Edge& e) { return !e.checked; }));
-  num_edges_ -= dropped / 2;
+std::vector<std::pair<int, Edge>> Roadmap::dropUnchecked() {
+  std::vector<std::pair<int, Edge>> dropped;
+  for (int a = 0; a < numNodes(); ++a)
+    for (const Edge& e : adjacency_[a])
+      if (!e.checked && a < e.to) dropped.emplace_back(a, e);
+  for (auto& list : adjacency_) std::erase_if(list, [](const Edge& e) { return !e.checked; });
+  num_edges_ -= static_cast<int>(dropped.size());
   stale_ = true;
-  return dropped / 2;
+  return dropped;
 }
 
 bool Roadmap::hasUnchecked() const {

@@ -46,8 +46,8 @@ class Roadmap {
   // after a failed lazy query would otherwise check the same motions again.
   void removeEdge(int a, int b);
   bool isBlocked(int a, int b) const;
-  // Removes every unchecked edge; returns how many.
-  int dropUnchecked();
+  // Removes every unchecked edge; returns them, each once (from the lower node's list).
+  std::vector<std::pair<int, Edge>> dropUnchecked();
   bool hasUnchecked() const;
   void markChecked(int a, int b);
   void markCertified(int a, int b);  // certified implies checked

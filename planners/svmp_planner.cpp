@@ -112,6 +112,7 @@ void SvmpPlanner::clear() {
   nn_.reset();
   uncentred_.clear();
   lazy_trees_tried_ = false;
+  eager_pass_run_ = false;
 }
 
 int SvmpPlanner::supportVectors() const {
@@ -477,8 +478,14 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       lazy_trees_tried_ = true;
       if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, tree_rng, stop, result)) break;
     }
-    if (round == 0 && roadmap_.dropUnchecked() > 0) {
+    if (round == 0 && !eager_pass_run_ && roadmap_.hasUnchecked()) {
+      eager_pass_run_ = true;
+      const auto lazy = roadmap_.dropUnchecked();
       connectShortestFirst(roadmap_, *nn_, context_, options_.k, stop);
+      // The lazy edges within the components the pass proved come back, unchecked: they join
+      // nothing new, and later queries take them where the pass's spanning forest goes round.
+      for (const auto& [a, e] : lazy)
+        if (roadmap_.connected(a, e.to) && !roadmap_.hasEdge(a, e.to)) roadmap_.addEdge(a, e.to, e.cost, false);
       --round;
       continue;
     }

@@ -118,6 +118,9 @@ class SvmpPlanner final : public Planner {
   const Roadmap& roadmap() const { return roadmap_; }
   int supportVectors() const;
   const SvmpOptions& options() const { return options_; }
+  // Whether this build's eager pass ran (once, at the first query the lazy roadmap and the trees
+  // before it did not answer).
+  bool eagerPassRun() const { return eager_pass_run_; }
 
  protected:
   void buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) override;
@@ -180,6 +183,7 @@ class SvmpPlanner final : public Planner {
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
   std::vector<std::pair<Eigen::VectorXd, int>> uncentred_;  // deferred descent ends and their classes
   bool lazy_trees_tried_ = false;  // this build's trees before the eager pass (SvmpOptions::lazy_trees)
+  bool eager_pass_run_ = false;    // eagerPassRun()
 };
 
 }  // namespace svmp::planners
