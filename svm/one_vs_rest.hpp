@@ -7,7 +7,7 @@
 // as to read them in place: shrinking's permutation would need every column gathered into each
 // solve's cache, which cost as much as computing it. The first problem's solve tells whether that
 // pays (shareColumns in one_vs_rest.cpp): on panda_shelf 8 problems of 1,300 samples each computed
-// about 1,000 columns, and training fell from 25 to 14 ms; where classes are apart (a point robot in
+// about 1,000 columns, and training fell from 28 to 17 ms; where classes are apart (a point robot in
 // a tunnel: each problem needs 5% of the matrix, active sets a fifth of the samples) the solves keep
 // a cache each, with shrinking. Classes train in parallel (OpenMP, `threads`), the first alone;
 // each thread has its own column cache of SolverOptions::cache_mb (memory: threads x cache_mb,

@@ -17,9 +17,15 @@ namespace {
 float* allocateColumns(size_t floats) {
   constexpr size_t kHuge = size_t{2} << 20;
   const size_t bytes = std::max<size_t>(floats, 1) * sizeof(float);
-  void* p = bytes < kHuge ? std::malloc(bytes) : std::aligned_alloc(kHuge, (bytes + kHuge - 1) / kHuge * kHuge);
+  if (bytes < kHuge) {
+    void* p = std::malloc(bytes);
+    if (p == nullptr) throw std::bad_alloc();
+    return static_cast<float*>(p);
+  }
+  const size_t whole_pages = (bytes + kHuge - 1) / kHuge * kHuge;
+  void* p = std::aligned_alloc(kHuge, whole_pages);
   if (p == nullptr) throw std::bad_alloc();
-  if (bytes >= kHuge) madvise(p, (bytes + kHuge - 1) / kHuge * kHuge, MADV_HUGEPAGE);  // a hint only
+  madvise(p, whole_pages, MADV_HUGEPAGE);  // a hint only
   return static_cast<float*>(p);
 }
 
