@@ -156,6 +156,48 @@ TEST(RoadmapQuery, ProvenPathRemovesEdgesTheProofRefusesAndGoesRound) {
 // connectShortestFirst against brute force, with every pair a candidate (k above the node count): the
 // edges it makes are a minimum spanning forest of the free pairs, so its components are those of all
 // free pairs and its total length is Prim's over them.
+// provenPath past a few dozen searches: a wall x in [0.4, 0.6] below y = 0.8, and beside it two
+// columns of 10 nodes (y 0.70-0.79) joined by 100 unchecked edges straight through the wall, with a
+// checked way round its top. The searches try the crossing edges shortest first, one removal each,
+// until every unchecked edge's midpoint is checked at once. That removes too a crossing edge far
+// below (y = 0.1), which no search would have tried: the way round is shorter than any path through it.
+TEST(RoadmapQuery, ProvenPathScreensEveryMidpointAfterManySearches) {
+  auto w = makeWorld(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: wall, shape: box, size: [0.2, 0.8, 1.0], position: [0.5, 0.4, 0]}\n"
+      "start: [0.3, 0.7]\n"
+      "goal: [0.7, 0.7]\n"
+      "resolution: 0.01\n");
+  Roadmap roadmap;
+  constexpr int kRows = 10;
+  for (int side = 0; side < 2; ++side)
+    for (int i = 0; i < kRows; ++i) roadmap.addNode(Eigen::Vector2d(side ? 0.7 : 0.3, 0.70 + 0.01 * i));
+  const int top_left = roadmap.addNode(Eigen::Vector2d(0.3, 0.9)), top_right = roadmap.addNode(Eigen::Vector2d(0.7, 0.9));
+  const int low_left = roadmap.addNode(Eigen::Vector2d(0.3, 0.1)), low_right = roadmap.addNode(Eigen::Vector2d(0.7, 0.1));
+  const auto link = [&](int a, int b, bool checked) {
+    roadmap.addEdge(a, b, w->space.distance(roadmap.node(a), roadmap.node(b)), checked);
+  };
+  for (int i = 0; i < kRows; ++i) {
+    if (i + 1 < kRows) link(i, i + 1, true), link(kRows + i, kRows + i + 1, true);
+    for (int j = 0; j < kRows; ++j) link(i, kRows + j, false);
+  }
+  link(kRows - 1, top_left, true), link(top_left, top_right, true), link(top_right, 2 * kRows - 1, true);
+  link(0, low_left, true), link(kRows, low_right, true), link(low_left, low_right, false);
+  int checks = 0;
+  double certify_ms = 0;
+  const std::vector<int> path = provenPath(roadmap, 0, kRows, w->context, nullptr, checks, certify_ms);
+  ASSERT_FALSE(path.empty());
+  EXPECT_TRUE(std::find(path.begin(), path.end(), top_left) != path.end()) << "round the top";
+  EXPECT_FALSE(roadmap.hasEdge(low_left, low_right)) << "screened with every other unchecked edge";
+  Eigen::VectorXd mid(2);
+  for (int u = 0; u < roadmap.numNodes(); ++u)
+    for (const Edge& e : roadmap.neighbours(u)) {
+      w->space.interpolate(roadmap.node(u), roadmap.node(e.to), 0.5, mid);
+      EXPECT_TRUE(w->checker.isValid(mid)) << "an edge through the wall is left: " << u << "-" << e.to;
+    }
+}
+
 TEST(RoadmapBuilder, ShortestFirstMakesAMinimumSpanningForestOfTheFreePairs) {
   auto w = makeWorld(closedWall(0.01) + "planners:\n" + kPlanners);
   std::mt19937 rng(7);
