@@ -1,8 +1,9 @@
 // Kernel columns of one sample set, each computed once, on its first request, and shared by every
 // SMO solve over those samples. The one-versus-rest problems of SVMP (svm/one_vs_rest.hpp) differ
 // only in labels and C, so each solve computed the same columns again: on panda_shelf 8 solves of
-// 1,300 samples computed about 1,000 columns each. A solve given SharedColumns copies its columns
-// out of them (a gather in its own shrinking order) instead of computing them.
+// 1,300 samples computed about 1,000 columns each. A solve given SharedColumns reads its columns in
+// place while its samples keep their own order (no shrinking), else gathers them in its shrinking
+// order into its cache; it computes none itself.
 //
 // A column is computed whole, in sample order, by the loop a solve uses (svm/kernel_column.hpp), so
 // every entry has one value whichever solve or thread asked first: results do not depend on the

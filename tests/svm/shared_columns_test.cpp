@@ -1,3 +1,5 @@
+// Shared kernel columns (svm/shared_columns.hpp): the kernel's values, each column computed once
+// whatever the threads, solves with them the solves without them, and columns of other samples refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
