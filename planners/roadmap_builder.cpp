@@ -114,6 +114,15 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
   // heuristic of a node does not change between them.
   std::vector<double> heuristic(roadmap.numNodes(), -1.0);
   Eigen::VectorXd point(target.size());
+  int level = 1;  // the points of a bisection level: odd multiples of 2^-level
+  const auto levelFree = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    const int parts = 1 << level;
+    for (int i = 1; i < parts; i += 2) {
+      context.space.interpolate(a, b, static_cast<double>(i) / parts, point);
+      if (!context.checker.isValid(point)) return false;
+    }
+    return true;
+  };
   // Removes the edge u-v, from the shared roadmap too.
   const auto remove = [&](int u, int v) {
     roadmap.removeEdge(u, v);
@@ -126,12 +135,10 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
     // edge's midpoint is checked at once, a check per edge, and the failures removed.
     if (searches == kSearchesBeforeScreeningAll) {
       std::vector<std::pair<int, int>> failed;
+      level = 1;
       for (int u = 0; u < roadmap.numNodes(); ++u)
-        for (const Edge& e : roadmap.neighbours(u)) {
-          if (e.checked || e.to < u) continue;
-          context.space.interpolate(roadmap.node(u), roadmap.node(e.to), 0.5, point);
-          if (!context.checker.isValid(point)) failed.emplace_back(u, e.to);
-        }
+        for (const Edge& e : roadmap.neighbours(u))
+          if (!e.checked && e.to > u && !levelFree(roadmap.node(u), roadmap.node(e.to))) failed.emplace_back(u, e.to);
       for (const auto& [u, v] : failed) remove(u, v);
     }
     const auto nodes = roadmap.shortestPath(from, to, [&](int v) {
@@ -168,15 +175,6 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
     // path that then fails (Figs 4.4-4.10: 12-23% fewer collision checks with the midpoint, Fig 4.6
     // 18% fewer again with the quarters; a third level gained no more elsewhere).
     constexpr void (Roadmap::*kNoMark)(int, int) = nullptr;
-    int level = 1;  // the points of a bisection level: odd multiples of 2^-level
-    const auto levelFree = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-      const int parts = 1 << level;
-      for (int i = 1; i < parts; i += 2) {
-        context.space.interpolate(a, b, static_cast<double>(i) / parts, point);
-        if (!context.checker.isValid(point)) return false;
-      }
-      return true;
-    };
     const auto check = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       ++checks;
       return context.validator.isValid(a, b);

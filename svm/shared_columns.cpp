@@ -34,8 +34,7 @@ float* allocateColumns(size_t floats) {
 void SharedColumns::Free::operator()(float* p) const { std::free(p); }
 
 SharedColumns::SharedColumns(const Eigen::MatrixXd& X, const Kernel& kernel)
-    : X_(X),
-      samples_(X, kernel),
+    : samples_(X, kernel),
       data_(allocateColumns(static_cast<size_t>(X.cols()) * static_cast<size_t>(X.cols()))),
       state_(new std::atomic<unsigned char>[static_cast<size_t>(X.cols())]) {
   for (Eigen::Index s = 0; s < X.cols(); ++s) state_[s].store(kEmpty, std::memory_order_relaxed);
@@ -60,7 +59,11 @@ const float* SharedColumns::column(int s) {
 }
 
 bool SharedColumns::matches(const Eigen::MatrixXd& X, const Kernel& kernel) const {
-  return X.rows() == X_.rows() && X.cols() == X_.cols() && X == X_ && kernel == samples_.kernel();
+  if (X.rows() != samples_.dim() || X.cols() != samples_.size() || !(kernel == samples_.kernel())) return false;
+  for (int i = 0; i < samples_.size(); ++i)
+    for (int k = 0; k < samples_.dim(); ++k)
+      if (X(k, i) != samples_.coordinate(k, i)) return false;
+  return true;
 }
 
 }  // namespace svmp::svm

@@ -37,8 +37,7 @@ class SharedColumns {
 
  private:
   enum State : unsigned char { kEmpty, kComputing, kReady };
-  Eigen::MatrixXd X_;
-  KernelColumns samples_;
+  KernelColumns samples_;  // the samples, also what matches() compares with
   struct Free {
     void operator()(float* p) const;
   };

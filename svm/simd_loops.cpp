@@ -411,22 +411,12 @@ SVMP_AVX512 SelectJ selectJAvx512(int m, const double* low, const double* yG, co
   }
   if (t + 8 <= m) selectJStep(a, t, tv, low, yG, diag, Ki, vkii, vgmax, vtau), t += 8;
   SelectJ r{-kInf, kInf, -1};
+  for (int l = 0; l < 8; ++l) r.gmax2 = std::max({r.gmax2, a.g2[l], b.g2[l]});
+  // Each set's objectives -(num / quad), +inf where no entry qualified, merged as selectJImpl's lanes.
   for (const SelectJLanes* s : {&a, &b}) {
-    alignas(64) double lane_num[8], lane_quad[8], lane_idx[8], lane_g2[8];
-    _mm512_store_pd(lane_num, s->num);
-    _mm512_store_pd(lane_quad, s->quad);
-    _mm512_store_pd(lane_idx, s->idx);
-    _mm512_store_pd(lane_g2, s->g2);
-    for (int l = 0; l < 8; ++l) {
-      r.gmax2 = std::max(r.gmax2, lane_g2[l]);
-      if (lane_idx[l] < 0) continue;
-      const double obj = -(lane_num[l] / lane_quad[l]);
-      const int index = static_cast<int>(lane_idx[l]);
-      if (obj < r.obj_min || (obj == r.obj_min && index < r.j)) {
-        r.obj_min = obj;
-        r.j = index;
-      }
-    }
+    const __m512d obj = _mm512_mul_pd(_mm512_set1_pd(-1.0), _mm512_div_pd(s->num, s->quad));
+    const __mmask8 none = _mm512_cmp_pd_mask(s->idx, _mm512_setzero_pd(), _CMP_LT_OQ);
+    reduceLanes<8, false>(_mm512_mask_blend_pd(none, obj, _mm512_set1_pd(kInf)), s->idx, r.obj_min, r.j);
   }
   selectJTail(t, m, low, yG, diag, Ki, kii, gmax, tau, r);
   return r;
