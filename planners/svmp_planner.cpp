@@ -111,8 +111,8 @@ void SvmpPlanner::clear() {
   grown_by_trees_.clear();
   nn_.reset();
   uncentred_.clear();
-  lazy_trees_tried_ = false;
   eager_pass_run_ = false;
+  tree_answers_ = 0;
 }
 
 int SvmpPlanner::supportVectors() const {
@@ -433,6 +433,7 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
   for (int v : nodes) result.path.push_back(with_query.node(v));
   result.certified = context_.certifier != nullptr;
   result.status = PlanStatus::kSolved;
+  ++tree_answers_;
   return true;
 }
 
@@ -449,6 +450,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   double widen = 1.0;
   RepairTrail trail;
   std::optional<Roadmap> before_repair;  // restored when the query fails (below)
+  bool trees_tried = false;              // joinByTrees, once per query
   for (int round = 0;; ++round) {
     Roadmap& with_query = with_query_;
     with_query = roadmap_;
@@ -462,10 +464,10 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     }
     // A lazy roadmap that fails first gets the build's deferred centred milestones, linked lazily
     // (they are often what a narrow passage needs: forest_200 checked 36% more when they went
-    // straight into the eager pass), then gives way to the thesis' eager MakeRoadmap (checked edges
-    // are kept), once per build; each time the query runs again as round 0. Eager connection reaches
-    // other components beyond the k nearest, and repair's frontiers need the components the roadmap
-    // has proven.
+    // straight into the eager pass), then trees (once per query: joinByTrees), then gives way to the
+    // thesis' eager MakeRoadmap (checked edges are kept), once per build; each time the query runs
+    // again as round 0. Eager connection reaches other components beyond the k nearest, and repair's
+    // frontiers need the components the roadmap has proven.
     if (round == 0 && !uncentred_.empty()) {
       const int first = roadmap_.numNodes();
       if (centreDeferred() > 0) {
@@ -474,8 +476,8 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
         continue;
       }
     }
-    if (round == 0 && !lazy_trees_tried_ && roadmap_.hasUnchecked()) {
-      lazy_trees_tried_ = true;
+    if (round == 0 && !trees_tried && options_.lazy) {
+      trees_tried = true;
       if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, tree_rng, stop, result)) break;
     }
     if (round == 0 && !eager_pass_run_ && roadmap_.hasUnchecked()) {

@@ -49,12 +49,13 @@ struct SvmpOptions {
   // tunnels whose components were still growing; docs/reproduction.md, "Problems made after the defaults").
   int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
-  // Before the eager pass (once per build, when the lazy roadmap and its centred nodes did not answer
-  // a query), RRT-Connect trees between the start's and the goal's components of the lazy roadmap for
-  // up to lazy_trees samples (0: none), their nodes linked lazily to their k nearest milestones; the
-  // eager pass runs only when they do not join the two. On the arms the eager pass costs 25k-65k
-  // checks where trees join in a few thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths shorter;
-  // docs/reproduction.md, twelfth session).
+  // When the lazy roadmap (and its centred nodes) did not answer a query, RRT-Connect trees between
+  // the start's and the goal's components for up to lazy_trees samples (0: none), their nodes linked
+  // lazily to their k nearest milestones; once per query, before the build's eager pass and before
+  // any repair round. On the arms the eager pass costs 25k-65k checks where trees join in a few
+  // thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths shorter; docs/reproduction.md, twelfth
+  // session), and a repair round 15k-35k where the trees join a pocket the roadmap does not reach
+  // in 1k-2k (panda_shelf, 100 queries: 0.74x the time; fourteenth session).
   int lazy_trees = 300;
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
   // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
@@ -121,6 +122,9 @@ class SvmpPlanner final : public Planner {
   // Whether this build's eager pass ran (once, at the first query the lazy roadmap and the trees
   // before it did not answer).
   bool eagerPassRun() const { return eager_pass_run_; }
+  // Queries of this build answered by the trees that run before the eager pass and the repair
+  // (SvmpOptions::lazy_trees).
+  int treeAnswers() const { return tree_answers_; }
 
  protected:
   void buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) override;
@@ -182,8 +186,8 @@ class SvmpPlanner final : public Planner {
   std::vector<bool> grown_by_trees_;  // roadmap_ nodes the repair's trees added (by index; shorter: no)
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
   std::vector<std::pair<Eigen::VectorXd, int>> uncentred_;  // deferred descent ends and their classes
-  bool lazy_trees_tried_ = false;  // this build's trees before the eager pass (SvmpOptions::lazy_trees)
   bool eager_pass_run_ = false;    // eagerPassRun()
+  int tree_answers_ = 0;           // treeAnswers()
 };
 
 }  // namespace svmp::planners

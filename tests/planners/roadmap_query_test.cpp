@@ -22,6 +22,19 @@ using test::planarRoadmap;
 
 const std::string kPlanners = "  prm: {samples: 100, k: 5}\n";
 
+// Every segment of `path` re-checked at a quarter of the scenario's resolution.
+void expectFreeAtQuarterResolution(const test::World& w, const std::vector<Eigen::VectorXd>& path,
+                                   const std::string& what) {
+  Eigen::VectorXd q(w.space.dim());
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const int steps = static_cast<int>(std::ceil(4 * w.space.distance(path[i], path[i + 1]) / w.scenario.resolution));
+    for (int s = 0; s <= steps; ++s) {
+      w.space.interpolate(path[i], path[i + 1], static_cast<double>(s) / std::max(steps, 1), q);
+      ASSERT_TRUE(w.checker.isValid(q)) << what << " segment " << i << " step " << s;
+    }
+  }
+}
+
 // A point robot in the unit square and a wall x in [0.4, 0.6] across it, of two overlapping boxes:
 // no path joins its two sides.
 std::string closedWall(double resolution) {
@@ -327,16 +340,33 @@ TEST(RoadmapQuery, SvmpTreesJoinWhatTheLazyRoadmapDoesNotBeforeAnEagerPass) {
     if (dynamic_cast<const SvmpPlanner&>(*with).eagerPassRun()) continue;
     ++joined;
     EXPECT_LT(a.collision_checks, b.collision_checks) << "seed " << seed;
-    Eigen::VectorXd q(w->space.dim());
-    for (size_t i = 0; i + 1 < a.path.size(); ++i) {
-      const int steps = static_cast<int>(std::ceil(4 * w->space.distance(a.path[i], a.path[i + 1]) / w->scenario.resolution));
-      for (int s = 0; s <= steps; ++s) {
-        w->space.interpolate(a.path[i], a.path[i + 1], static_cast<double>(s) / std::max(steps, 1), q);
-        ASSERT_TRUE(w->checker.isValid(q)) << "seed " << seed << " segment " << i << " step " << s;
-      }
-    }
+    expectFreeAtQuarterResolution(*w, a.path, "seed " + std::to_string(seed));
   }
   EXPECT_GE(joined, 2);
+}
+
+// Random queries on one roadmap (panda_shelf, as svmp-plan --queries 60 --seed 2): every query the
+// roadmap does not answer tries the trees before any repair round, not only the build's first. More
+// than one query is answered by trees, certified and free when re-checked finely; after the first
+// (which also adds the build's deferred centred milestones), each without adding a milestone, as a
+// repair round would.
+TEST(RoadmapQuery, SvmpTriesTreesAtEveryQueryTheRoadmapDoesNotAnswer) {
+  auto w = makeWorld(test::readScenario("panda_shelf.yaml"));
+  w->certify();
+  auto planner = w->planner("svmp");
+  const auto& svmp = dynamic_cast<const SvmpPlanner&>(*planner);
+  ASSERT_TRUE(planner->build(2).solved());
+  int by_trees = 0;
+  for (const cspace::Query& q : experiments::randomQueries(w->scenario, 60, 2)) {
+    const int answers = svmp.treeAnswers(), nodes = svmp.roadmap().numNodes();
+    const PlanResult r = planner->query(q, 2);
+    ASSERT_TRUE(r.solved()) << r.message;
+    if (svmp.treeAnswers() == answers) continue;
+    if (++by_trees > 1) EXPECT_EQ(svmp.roadmap().numNodes(), nodes);
+    EXPECT_TRUE(r.certified);
+    expectFreeAtQuarterResolution(*w, r.path, "tree answer " + std::to_string(by_trees));
+  }
+  EXPECT_GE(by_trees, 2);
 }
 
 // A pair that no path joins (closedWall): the query fails after its
