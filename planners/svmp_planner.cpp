@@ -464,7 +464,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     }
     // A lazy roadmap that fails first gets the build's deferred centred milestones, linked lazily
     // (they are often what a narrow passage needs: forest_200 checked 36% more when they went
-    // straight into the eager pass), then trees (once per query: joinByTrees), then gives way to the
+    // straight into the eager pass), then trees (joinByTrees, once per query), then gives way to the
     // thesis' eager MakeRoadmap (checked edges are kept), once per build; each time the query runs
     // again as round 0. Eager connection reaches other components beyond the k nearest, and repair's
     // frontiers need the components the roadmap has proven.
