@@ -431,10 +431,27 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
                                             checks, result.times.certify_ms);
   if (nodes.empty()) return false;
   for (int v : nodes) result.path.push_back(with_query.node(v));
+  keepTreeNodes(with_query, std::max(start_node, goal_node) + 1);
   result.certified = context_.certifier != nullptr;
   result.status = PlanStatus::kSolved;
   ++tree_answers_;
   return true;
+}
+
+void SvmpPlanner::keepTreeNodes(const Roadmap& with_query, int first) {
+  const int n = roadmap_.numNodes();
+  const auto index = [&](int v) { return v < first ? v : n + v - first; };
+  for (int v = first; v < with_query.numNodes(); ++v) roadmap_.addNode(with_query.node(v));
+  for (int v = first; v < with_query.numNodes(); ++v)
+    for (const Edge& e : with_query.neighbours(v)) {
+      if ((e.to >= n && e.to < first) || (e.to >= first && e.to < v)) continue;  // an endpoint; once
+      const int a = index(v), b = index(e.to);
+      roadmap_.addEdge(a, b, e.cost, e.checked);
+      if (e.certified) roadmap_.markCertified(a, b);
+    }
+  grown_by_trees_.resize(n, false);
+  grown_by_trees_.resize(roadmap_.numNodes(), true);
+  nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
 }
 
 void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,

@@ -51,8 +51,8 @@ struct SvmpOptions {
   int repair_samples = 100;       // random configurations per repair round
   // When the lazy roadmap (and its centred nodes) did not answer a query, RRT-Connect trees between
   // the start's and the goal's components for up to lazy_trees samples (0: none), their nodes linked
-  // lazily to their k nearest milestones; once per query, before the build's eager pass and before
-  // any repair round. On the arms the eager pass costs 25k-65k checks where trees join in a few
+  // lazily to their k nearest milestones and, when they answer, kept in the roadmap; once per query,
+  // before the build's eager pass and before any repair round. On the arms the eager pass costs 25k-65k checks where trees join in a few
   // thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths shorter; docs/reproduction.md, twelfth
   // session), and a repair round 15k-35k where the trees join a pocket the roadmap does not reach
   // in 1k-2k (panda_shelf, 100 queries: 0.74x the time; fourteenth session).
@@ -176,6 +176,9 @@ class SvmpPlanner final : public Planner {
   // start's and the goal's components and a path between them holds its proofs.
   bool joinByTrees(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng, const Termination& stop,
                    PlanResult& result);
+  // Adds the query roadmap's nodes from `first` on (after the milestones and the query's ends) to the
+  // roadmap, with their edges except those to the query's ends.
+  void keepTreeNodes(const Roadmap& with_query, int first);
 
   SvmpOptions options_;
   planners::ObstacleSamples samples_;
