@@ -412,11 +412,11 @@ void SvmpPlanner::fillCounters(PlanResult& result) const {
   result.support_vectors = supportVectors();
 }
 
-bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng,
+bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node, int samples, cspace::Rng& rng,
                               const Termination& stop, PlanResult& result) {
-  if (options_.lazy_trees == 0) return false;
+  if (samples == 0) return false;
   connectByTrees(with_query, with_query.component(start_node), with_query.component(goal_node), context_,
-                 options_.tree_range, options_.lazy_trees, rng, stop);
+                 options_.tree_range, samples, rng, stop);
   if (!with_query.connected(start_node, goal_node)) return false;
   // The trees' nodes are linked lazily to their k nearest milestones, as the lazy roadmap's own: the
   // search then leaves the trees' detours where a milestone offers a shorter way (paths 9-28% shorter
@@ -495,7 +495,8 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     }
     if (round == 0 && !trees_tried && options_.lazy) {
       trees_tried = true;
-      if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, tree_rng, stop, result)) break;
+      if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, options_.lazy_trees, tree_rng, stop, result))
+        break;
     }
     if (round == 0 && !eager_pass_run_ && roadmap_.hasUnchecked()) {
       eager_pass_run_ = true;
@@ -537,6 +538,15 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
       break;
     }
+    // Before a repaired query fails, one last try of trees ten times the size of those before the
+    // eager pass: the repair's rounds grow trees of repair_samples between guided rounds, too small
+    // where the passage winds through many dimensions (bench/unseen2/crs6_partition: 3 of 60 seeds
+    // failed after 40 rounds, RRTConnect solved all 60).
+    constexpr int kLastTreesFactor = 10;
+    if (!repaired && options_.repair_rounds > 0 && options_.lazy && !stop() &&
+        joinByTrees(with_query, outcome.start_node, outcome.goal_node, kLastTreesFactor * options_.lazy_trees,
+                    tree_rng, stop, result))
+      break;
     if (!repaired) {
       if (!budget && options_.repair_rounds > 0) {
         const std::string stopped =

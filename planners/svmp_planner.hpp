@@ -172,10 +172,10 @@ class SvmpPlanner final : public Planner {
   // q is centred in its own interval when that is bounded within sigma on both sides (a passage
   // narrower than 2 sigma), else returned as it is.
   std::optional<Eigen::VectorXd> centreAlongNormal(int k, const Eigen::VectorXd& q) const;
-  // SvmpOptions::lazy_trees on the query roadmap: true, with result's path, when the trees join the
-  // start's and the goal's components and a path between them holds its proofs.
-  bool joinByTrees(Roadmap& with_query, int start_node, int goal_node, cspace::Rng& rng, const Termination& stop,
-                   PlanResult& result);
+  // RRT-Connect trees of up to `samples` samples on the query roadmap: true, with result's path, when
+  // they join the start's and the goal's components and a path between them holds its proofs.
+  bool joinByTrees(Roadmap& with_query, int start_node, int goal_node, int samples, cspace::Rng& rng,
+                   const Termination& stop, PlanResult& result);
   // Adds the query roadmap's nodes from `first` on (after the milestones and the query's ends) to the
   // roadmap, with their edges except those to the query's ends.
   void keepTreeNodes(const Roadmap& with_query, int first);

@@ -375,6 +375,30 @@ TEST(RoadmapQuery, SvmpTriesTreesAtEveryQueryTheRoadmapDoesNotAnswerAndKeepsThei
   EXPECT_GE(by_trees, 2);
 }
 
+// Before a repaired query fails, larger trees get one last try: Fig 4.6 with a roadmap, trees and
+// repair too small to join its start and goal (5 samples per obstacle, trees of 10 samples, one
+// repair round of 2 samples) is answered by them, after the eager pass, certified and free when
+// re-checked finely.
+TEST(RoadmapQuery, SvmpTriesLargerTreesBeforeARepairedQueryFails) {
+  auto w = makeWorld(test::readScenario("thesis_fig4_6.yaml"));
+  w->certify();
+  cspace::ParameterSet small = w->scenario.paramsFor("svmp");
+  for (const auto& [key, value] : {std::pair{"samples_per_tree", "5"}, {"lazy_trees", "10"}, {"repair_rounds", "1"},
+                                   {"repair_samples", "2"}})
+    small.set(key, value);
+  int last_trees = 0;
+  for (std::uint64_t seed : {2, 3, 4}) {
+    auto planner = makePlanner("svmp", w->context, small);
+    const auto& svmp = dynamic_cast<const SvmpPlanner&>(*planner);
+    const PlanResult r = planner->solve(w->query(), seed);
+    if (!r.solved() || !svmp.eagerPassRun() || svmp.treeAnswers() != 1) continue;
+    ++last_trees;
+    EXPECT_TRUE(r.certified);
+    expectFreeAtQuarterResolution(*w, r.path, "seed " + std::to_string(seed));
+  }
+  EXPECT_GE(last_trees, 2);
+}
+
 // A pair that no path joins (closedWall): the query fails after its
 // repair rounds, and the roadmap is the one it found, with the build's centred descent ends (above).
 // Those rounds' nodes filled both components; kept, they would slow every later query and make the
