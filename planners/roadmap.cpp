@@ -84,6 +84,11 @@ std::vector<std::pair<int, Edge>> Roadmap::dropUnchecked() {
   return dropped;
 }
 
+void Roadmap::restoreWithinComponents(const std::vector<std::pair<int, Edge>>& edges) {
+  for (const auto& [a, e] : edges)
+    if (connected(a, e.to) && !hasEdge(a, e.to)) addEdge(a, e.to, e.cost, false);
+}
+
 bool Roadmap::hasUnchecked() const {
   return std::any_of(adjacency_.begin(), adjacency_.end(), [](const std::vector<Edge>& list) {
     return std::any_of(list.begin(), list.end(), [](const Edge& e) { return !e.checked; });

@@ -48,6 +48,9 @@ class Roadmap {
   bool isBlocked(int a, int b) const;
   // Removes every unchecked edge; returns them, each once (from the lower node's list).
   std::vector<std::pair<int, Edge>> dropUnchecked();
+  // Adds, unchecked, those of `edges` whose nodes already lie in one component: they join nothing
+  // new, and later searches take them where the checked edges go round.
+  void restoreWithinComponents(const std::vector<std::pair<int, Edge>>& edges);
   bool hasUnchecked() const;
   void markChecked(int a, int b);
   void markCertified(int a, int b);  // certified implies checked

@@ -442,13 +442,22 @@ void SvmpPlanner::keepTreeNodes(const Roadmap& with_query, int first) {
   const int n = roadmap_.numNodes();
   const auto index = [&](int v) { return v < first ? v : n + v - first; };
   for (int v = first; v < with_query.numNodes(); ++v) roadmap_.addNode(with_query.node(v));
+  std::vector<std::pair<int, Edge>> links;
   for (int v = first; v < with_query.numNodes(); ++v)
-    for (const Edge& e : with_query.neighbours(v)) {
-      if ((e.to >= n && e.to < first) || (e.to >= first && e.to < v)) continue;  // an endpoint; once
-      const int a = index(v), b = index(e.to);
-      roadmap_.addEdge(a, b, e.cost, e.checked);
-      if (e.certified) roadmap_.markCertified(a, b);
+    for (Edge e : with_query.neighbours(v)) {
+      // Not the edges to the query's ends; each edge between two tree nodes once.
+      if ((e.to >= n && e.to < first) || (e.to >= first && e.to < v)) continue;
+      e.to = index(e.to);
+      if (!e.checked) {
+        links.emplace_back(index(v), e);
+        continue;
+      }
+      roadmap_.addEdge(index(v), e.to, e.cost);
+      if (e.certified) roadmap_.markCertified(index(v), e.to);
     }
+  // The unchecked links only within components: a later query's repair needs the components the
+  // roadmap has proven (as after the eager pass).
+  roadmap_.restoreWithinComponents(links);
   grown_by_trees_.resize(n, false);
   grown_by_trees_.resize(roadmap_.numNodes(), true);
   nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
@@ -502,10 +511,9 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       eager_pass_run_ = true;
       const auto lazy = roadmap_.dropUnchecked();
       connectShortestFirst(roadmap_, *nn_, context_, options_.k, stop);
-      // The lazy edges within the components the pass proved come back, unchecked: they join
-      // nothing new, and later queries take them where the pass's spanning forest goes round.
-      for (const auto& [a, e] : lazy)
-        if (roadmap_.connected(a, e.to) && !roadmap_.hasEdge(a, e.to)) roadmap_.addEdge(a, e.to, e.cost, false);
+      // The lazy edges within the components the pass proved come back (later queries take them
+      // where the pass's spanning forest goes round).
+      roadmap_.restoreWithinComponents(lazy);
       --round;
       continue;
     }
@@ -540,7 +548,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     }
     // Before a repaired query fails, one last try of trees ten times the size of those before the
     // eager pass: the repair's rounds grow trees of repair_samples between guided rounds, too small
-    // where the passage winds through many dimensions (bench/unseen2/crs6_partition: 3 of 60 seeds
+    // where the passage winds through many dimensions (bench/unseen/crs6_partition: 3 of 60 seeds
     // failed after 40 rounds, RRTConnect solved all 60).
     constexpr int kLastTreesFactor = 10;
     if (!repaired && options_.repair_rounds > 0 && options_.lazy && !stop() &&

@@ -52,10 +52,11 @@ struct SvmpOptions {
   // When the lazy roadmap (and its centred nodes) did not answer a query, RRT-Connect trees between
   // the start's and the goal's components for up to lazy_trees samples (0: none), their nodes linked
   // lazily to their k nearest milestones and, when they answer, kept in the roadmap; once per query,
-  // before the build's eager pass and before any repair round. On the arms the eager pass costs 25k-65k checks where trees join in a few
+  // before the build's eager pass and before any repair round (and ten times as large before a
+  // repaired query fails). On the arms the eager pass costs 25k-65k checks where trees join in a few
   // thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths shorter; docs/reproduction.md, twelfth
   // session), and a repair round 15k-35k where the trees join a pocket the roadmap does not reach
-  // in 1k-2k (panda_shelf, 100 queries: 0.74x the time; fourteenth session).
+  // in 1k-2k (panda_shelf, 100 queries: 0.72x the time; fourteenth session).
   int lazy_trees = 300;
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
   // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
@@ -122,8 +123,8 @@ class SvmpPlanner final : public Planner {
   // Whether this build's eager pass ran (once, at the first query the lazy roadmap and the trees
   // before it did not answer).
   bool eagerPassRun() const { return eager_pass_run_; }
-  // Queries of this build answered by the trees that run before the eager pass and the repair
-  // (SvmpOptions::lazy_trees).
+  // Queries of this build answered by trees (SvmpOptions::lazy_trees): those before the eager pass
+  // and the repair, or the larger ones before a repaired query fails.
   int treeAnswers() const { return tree_answers_; }
 
  protected:
