@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <queue>
 #include <random>
@@ -141,6 +142,29 @@ TEST(Roadmap, DropsOnlyUncheckedEdges) {
   EXPECT_TRUE(r.connected(2, 3));
   EXPECT_FALSE(r.connected(1, 2));
   EXPECT_TRUE(r.dropUnchecked().empty());
+}
+
+// Dropped edges come back, unchecked, only between nodes one component already holds, and never twice.
+TEST(Roadmap, RestoresUncheckedEdgesOnlyWithinComponents) {
+  Roadmap r;
+  for (int i = 0; i < 4; ++i) r.addNode(Eigen::Vector2d(i, 0));
+  r.addEdge(0, 1, 1.0);
+  r.addEdge(1, 2, 1.0);
+  Edge e;
+  e.checked = false;
+  std::vector<std::pair<int, Edge>> dropped;
+  for (auto [a, b] : {std::pair{0, 2}, {0, 3}, {1, 2}}) {
+    e.to = b;
+    e.cost = std::abs(a - b);
+    dropped.emplace_back(a, e);
+  }
+  r.restoreWithinComponents(dropped);
+  EXPECT_TRUE(r.hasEdge(2, 0));
+  EXPECT_FALSE(r.isChecked(0, 2));
+  EXPECT_FALSE(r.hasEdge(0, 3)) << "0 and 3 lie in different components";
+  EXPECT_FALSE(r.connected(0, 3));
+  EXPECT_EQ(r.numEdges(), 3) << "1-2 is there already";
+  EXPECT_TRUE(r.isChecked(1, 2));
 }
 
 std::vector<int> bfsComponents(int n, const std::vector<std::pair<int, int>>& edges) {
