@@ -541,20 +541,22 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
         budget && !stop() &&
         repair(with_query, outcome.start_node, outcome.goal_node, widen, trail, rng, tree_rng, stop, why,
                result.times.certify_ms);
-    if (stop()) {
-      result.status = PlanStatus::kTimeout;
-      result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
-      break;
-    }
     // Before a repaired query fails, one last try of trees ten times the size of those before the
     // eager pass: the repair's rounds grow trees of repair_samples between guided rounds, too small
     // where the passage winds through many dimensions (bench/unseen/crs6_partition: 3 of 60 seeds
     // failed after 40 rounds, RRTConnect solved all 60).
     constexpr int kLastTreesFactor = 10;
-    if (!repaired && options_.repair_rounds > 0 && options_.lazy && !stop() &&
-        joinByTrees(with_query, outcome.start_node, outcome.goal_node, kLastTreesFactor * options_.lazy_trees,
-                    tree_rng, stop, result))
+    if (!repaired && options_.repair_rounds > 0 && options_.lazy && options_.lazy_trees > 0 && !stop()) {
+      const int samples = kLastTreesFactor * options_.lazy_trees;
+      if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result)) break;
+      why += std::string(why.empty() ? "" : "; ") + "trees of " + std::to_string(samples) +
+             " samples did not join them";
+    }
+    if (stop()) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
       break;
+    }
     if (!repaired) {
       if (!budget && options_.repair_rounds > 0) {
         const std::string stopped =
