@@ -8,6 +8,7 @@
 #include <nanoflann.hpp>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace svmp::svm {
@@ -147,15 +148,18 @@ struct TruncatedRbfEvaluator::Blocks {
   }
 };
 
-TruncatedRbfEvaluator::TruncatedRbfEvaluator(const BinaryModel& model)
+TruncatedRbfEvaluator::TruncatedRbfEvaluator(const BinaryModel& model, double cutoff)
     : dim_(model.dim()), coef_(model.coefficients()), bias_(model.bias()) {
   if (!model.kernel().isPlainRbf())
     throw std::invalid_argument(
         std::string("TruncatedRbfEvaluator: needs a plain RBF kernel, got ") +
         kernelTypeName(model.kernel().type) + (model.kernel().block > 0 ? " (block-sum)" : ""));
+  if (!(cutoff > 0) || !std::isfinite(cutoff))
+    throw std::invalid_argument("TruncatedRbfEvaluator: cutoff must be positive and finite, got " +
+                                std::to_string(cutoff));
   gamma_ = model.kernel().gamma;
-  squared_radius_ = 5.0 / gamma_;
-  bound_ = coef_.cwiseAbs().sum() * std::exp(-5.0);
+  squared_radius_ = cutoff / gamma_;
+  bound_ = coef_.cwiseAbs().sum() * std::exp(-cutoff);
   if (model.numSupportVectors() == 0) return;
   if (dim_ <= 16)
     blocks_ = std::make_unique<Blocks>(model.supportVectors(), coef_);
