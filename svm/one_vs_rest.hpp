@@ -9,7 +9,9 @@
 // pays (shareColumns in one_vs_rest.cpp): on panda_shelf 8 problems of 1,300 samples each computed
 // about 1,000 columns, and training fell from 28 to 17 ms; where classes are apart (a point robot in
 // a tunnel: each problem needs 5% of the matrix, active sets a fifth of the samples) the solves keep
-// a cache each, with shrinking. Classes train in parallel (OpenMP, `threads`), the first alone;
+// a cache each, with shrinking, and where the first problem kept few support vectors (under a
+// quarter of the samples: forest_200's colour models keep a tenth) they shrink from the start
+// (SolverOptions::early_shrinking). Classes train in parallel (OpenMP, `threads`), the first alone;
 // each thread has its own column cache of SolverOptions::cache_mb (memory: threads x cache_mb,
 // plus the shared columns, at most cache_mb).
 #pragma once
@@ -29,6 +31,7 @@ struct OneVsRestModel {
   std::vector<BinaryModel> models;      // models[k]: classes[k] is +1, every other class -1
   std::vector<SolverResult> solutions;  // alpha in sample order, for warm starts
   long long shared_columns = 0;         // kernel columns computed once for all problems (0: not shared)
+  bool early_shrinking = false;         // the problems after the first shrank from the start
 };
 
 // C_i = C * class_weight[labels[i]] (1 when the label is absent). Needs >= 2 classes.

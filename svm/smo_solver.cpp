@@ -433,7 +433,8 @@ SolverResult SmoSolver::run() {
   for (int i = 0; i < n_; ++i) updateMasks(i);
   SolverResult result;
   long iter = 0;
-  int counter = shrink_at_start_ ? 1 : std::min(n_, 1000) + 1;
+  const bool early = shrink_at_start_ || opt_.early_shrinking;
+  int counter = early ? 1 : std::min(n_, 1000) + 1;
   result.status = SolverStatus::kOptimal;
   while (true) {
     if (iter >= opt_.max_iterations) {
@@ -441,7 +442,7 @@ SolverResult SmoSolver::run() {
       break;
     }
     if (--counter == 0) {
-      counter = std::min(n_, shrink_at_start_ ? kWarmShrinkEvery : 1000);
+      counter = std::min(n_, early ? kWarmShrinkEvery : 1000);
       if (opt_.shrinking) shrink();
     }
     int i = -1, j = -1;

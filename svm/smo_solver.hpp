@@ -28,6 +28,10 @@ struct SolverOptions {
   long max_iterations = 10'000'000;  // reported as SolverStatus::kIterationLimit when reached
   double cache_mb = 100;             // kernel column cache (float entries)
   bool shrinking = true;
+  // Shrink every 100 iterations from the start, as after a warm start, instead of libsvm's first
+  // shrink after min(n, 1000): pays where few samples become support vectors (one-versus-rest of a
+  // class far from most samples), costs gradient reconstructions where most do.
+  bool early_shrinking = false;
   // Threads inside one solve (OpenMP), used while the active set has at least parallel_min_samples
   // samples (measured threshold: docs/benchmarks.md). 1 for solves that already run in parallel,
   // e.g. one-versus-rest across classes.

@@ -13,19 +13,23 @@ namespace svmp::svm {
 namespace {
 
 // Each class is the binary problem solved alone with the options the training used: the first with
-// shrinking, the others without it when they shared columns (svm/shared_columns.hpp). The same
-// whatever the thread count.
+// shrinking, the others without it when they shared columns (svm/shared_columns.hpp), from the
+// start when the first kept few support vectors. The same whatever the thread count.
 void expectSeparateSolves(const testing::BallProblem& p, const Kernel& k, double C,
-                          const std::map<int, double>& w, const SolverOptions& opt, long long shared) {
+                          const std::map<int, double>& w, const SolverOptions& opt, long long shared,
+                          bool early) {
   const OneVsRestModel one = trainOneVsRest(p.X, p.labels, k, C, w, opt, 1);
   const OneVsRestModel two = trainOneVsRest(p.X, p.labels, k, C, w, opt, 2);
   EXPECT_EQ(one.shared_columns, shared);
   EXPECT_EQ(two.shared_columns, shared);
+  EXPECT_EQ(one.early_shrinking, early);
+  EXPECT_EQ(two.early_shrinking, early);
   for (size_t c = 0; c < one.classes.size(); ++c) {
     Eigen::VectorXd y, sample_C;
     oneVsRestProblem(p.labels, one.classes[c], C, w, y, sample_C);
     SolverOptions alone = opt;
     alone.shrinking = c == 0 || shared == 0;
+    alone.early_shrinking = c > 0 && early;
     const SolverResult r = solveBinary(p.X, y, sample_C, k, alone);
     EXPECT_NEAR(one.solutions[c].objective, r.objective, 1e-9 * std::abs(r.objective)) << c;
     EXPECT_NEAR(two.solutions[c].objective, r.objective, 1e-9 * std::abs(r.objective)) << c;
@@ -34,7 +38,8 @@ void expectSeparateSolves(const testing::BallProblem& p, const Kernel& k, double
   }
 }
 
-// Three classes in 3-D whose problems each need a small part of the kernel matrix: no sharing.
+// Three classes in 3-D whose problems each need a small part of the kernel matrix and keep few
+// support vectors: no sharing, and the second and third shrink from the start.
 TEST(OneVsRest, MatchesSeparateBinaryProblemsAndThreadCounts) {
   const auto p = testing::makeBallProblem(3, 2500, 3, 31);
   const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
@@ -44,7 +49,9 @@ TEST(OneVsRest, MatchesSeparateBinaryProblemsAndThreadCounts) {
   Eigen::VectorXd y, C;
   oneVsRestProblem(p.labels, 1, 5.0, w, y, C);
   EXPECT_EQ(C[0], 10.0);  // sample 0 is class 1
-  expectSeparateSolves(p, k, 5.0, w, {}, 0);
+  EXPECT_LT(ovr.solutions[0].support_vectors, 2500 / 4);
+  EXPECT_TRUE(ovr.early_shrinking);
+  expectSeparateSolves(p, k, 5.0, w, {}, 0, true);
 }
 
 // Interleaved classes in 7-D (as an arm's C-obstacles): each problem needs most of the kernel
@@ -57,10 +64,11 @@ TEST(OneVsRest, InterleavedClassesShareTheirColumns) {
   ASSERT_EQ(ovr.classes.size(), 8u);
   EXPECT_GT(ovr.shared_columns, 600);
   EXPECT_LE(ovr.shared_columns, 1200);
-  expectSeparateSolves(p, k, 100.0, {}, {}, ovr.shared_columns);
+  EXPECT_FALSE(ovr.early_shrinking);
+  expectSeparateSolves(p, k, 100.0, {}, {}, ovr.shared_columns, false);
   SolverOptions small;
   small.cache_mb = 5;  // 1,200^2 floats are 5.5 MB
-  expectSeparateSolves(p, k, 100.0, {}, small, 0);
+  expectSeparateSolves(p, k, 100.0, {}, small, 0, false);
 }
 
 TEST(OneVsRest, BadInputThrows) {

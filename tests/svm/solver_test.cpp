@@ -55,6 +55,24 @@ TEST(Solver, SolutionSatisfiesKktToEps) {
   }
 }
 
+// Shrinking from the start reaches the same optimum (KKT to eps against the exact gradient) over a
+// smaller mean active set where few samples are support vectors.
+TEST(Solver, EarlyShrinkingReachesKktOverFewerSamples) {
+  const auto p = makeBallProblem(3, 2500, 3, 31);
+  const Eigen::VectorXd y = p.binary();
+  const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), kC);
+  const Kernel k = Kernel::rbfFromSigma(sigmaFor(p));
+  SolverOptions early;
+  early.early_shrinking = true;
+  const SolverResult r = solveBinary(p.X, y, C, k, early), base = solveBinary(p.X, y, C, k, {});
+  ASSERT_EQ(r.status, SolverStatus::kOptimal);
+  ASSERT_LT(base.support_vectors, y.size() / 4);
+  const Eigen::VectorXd G = exactGradient(p.X, y, r.alpha, k);
+  EXPECT_LT(kktViolation(y, C, r.alpha, G), early.eps);
+  EXPECT_NEAR(r.objective, base.objective, 1e-3 * std::abs(base.objective));
+  EXPECT_LT(r.mean_active, 0.8 * base.mean_active);
+}
+
 TEST(Solver, OtherKernelsReachKkt) {
   const auto p = makeBallProblem(4, 600, 2, 5);
   const Eigen::VectorXd y = p.binary();
