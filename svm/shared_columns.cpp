@@ -11,13 +11,15 @@ namespace svmp::svm {
 namespace {
 
 // n^2 floats, in 2 MB pages where the kernel allows (Linux transparent huge pages on madvise) once
-// they fill one: each first touch of a 4 kB page is a page fault, and in a virtual machine a fault
-// costs microseconds (with 4 kB pages, sharing made tunnel3d_zigzag_02's training 2.7x slower: 45 MB,
-// 6,600 faults). Smaller sets take 4 kB pages: a huge page is zeroed whole at its first touch.
+// they fill an eighth of one: each first touch of a 4 kB page is a page fault, and in a virtual
+// machine a fault costs microseconds (with 4 kB pages, sharing made tunnel3d_zigzag_02's training
+// 2.7x slower: 45 MB, 6,600 faults; Fig 4.4's 1.9 MB, 460 faults, made a process's first training
+// 12.9 ms against 8.5 ms in one huge page). Smaller sets take 4 kB pages: a huge page is zeroed whole
+// at its first touch.
 float* allocateColumns(size_t floats) {
   constexpr size_t kHuge = size_t{2} << 20;
   const size_t bytes = std::max<size_t>(floats, 1) * sizeof(float);
-  if (bytes < kHuge) {
+  if (bytes < kHuge / 8) {
     void* p = std::malloc(bytes);
     if (p == nullptr) throw std::bad_alloc();
     return static_cast<float*>(p);
