@@ -66,12 +66,13 @@ SurfaceFollowing SvppOptions::following(const cspace::Query& query, const Eigen:
   return f;
 }
 
-svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, double eps) {
+svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, double eps,
+                                svm::SolverWorkspace* workspace) {
   svm::SolverOptions solver;
   solver.eps = eps;
   const svm::Kernel kernel = svm::Kernel::rbf(gamma);
-  const svm::SolverResult solution =
-      svm::solveBinary(set.X, set.y, Eigen::VectorXd::Constant(set.size(), C), kernel, solver);
+  const svm::SolverResult solution = svm::solveBinary(set.X, set.y, Eigen::VectorXd::Constant(set.size(), C),
+                                                      kernel, solver, nullptr, workspace);
   return svm::BinaryModel::fromSolution(set.X, set.y, solution, kernel);
 }
 
@@ -130,7 +131,7 @@ bool SvppPlanner::validPath(const std::vector<Eigen::VectorXd>& path) const {
 }
 
 SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pattern,
-                                  double best_length, PhaseTimes& times) const {
+                                  double best_length, PhaseTimes& times) {
   SvppTrial trial;
   trial.pattern = pattern;
   auto t0 = Clock::now();
@@ -139,7 +140,7 @@ SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pat
                                      space.lower(), space.upper());
   times.sampling_ms += msSince(t0);
   t0 = Clock::now();
-  trial.model = trainSvppModel(trial.samples, options_.gamma, options_.C, options_.eps);
+  trial.model = trainSvppModel(trial.samples, options_.gamma, options_.C, options_.eps, &workspace_);
   trial.svm_ms = msSince(t0);
   times.training_ms += trial.svm_ms;
   t0 = Clock::now();

@@ -26,6 +26,7 @@
 #include "planners/risk_function.hpp"
 #include "planners/svpp_labelling.hpp"
 #include "planners/svpp_path.hpp"
+#include "svm/solver_workspace.hpp"
 
 namespace svmp::planners {
 
@@ -77,8 +78,10 @@ struct SvppTrace {
 };
 
 // Trains the RBF SVM of one training set (per-sample C all equal). Throws std::invalid_argument
-// when the set has one class only.
-svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, double eps);
+// when the set has one class only. `workspace`: kept between a query's patterns, its kernel cache's
+// memory is reused instead of taken afresh (and faulted in) by every solve.
+svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, double eps,
+                                svm::SolverWorkspace* workspace = nullptr);
 
 class SvppPlanner final : public Planner {
  public:
@@ -101,7 +104,7 @@ class SvppPlanner final : public Planner {
 
  private:
   SvppTrial tryPattern(const cspace::Query& query, const Pattern& pattern, double best_length,
-                       PhaseTimes& times) const;
+                       PhaseTimes& times);
   bool validPath(const std::vector<Eigen::VectorXd>& path) const;
 
   SvppOptions options_;
@@ -109,6 +112,9 @@ class SvppPlanner final : public Planner {
   SvppTrace trace_;
   ObstacleSamples chosen_samples_;  // the returned pattern's samples (class 1 / 2), for pictures
   std::optional<RiskFunction> chosen_;  // its SVM
+  // The patterns' SVMs train one after another: a cache's memory freed by one solve went back to the
+  // system and was faulted in again by the next (a third of svpp's time in 3-D).
+  svm::SolverWorkspace workspace_;
 };
 
 }  // namespace svmp::planners
