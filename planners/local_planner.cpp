@@ -190,7 +190,7 @@ void LocalPlanner::answer(const cspace::Query& query, std::uint64_t seed, const 
   svm::SolverOptions solver;
   solver.eps = options_.eps;
   risk_.emplace(RiskFunction::trainBinary(samples_.points, labelling_.y, C, options_.sigma, solver,
-                                          context_.space.metricScale(), true));
+                                          context_.space.metricScale(), true, &workspace_));
   result.support_vectors = risk_->model(0).numSupportVectors();
   result.times.training_ms += msSince(t0);
   t0 = Clock::now();

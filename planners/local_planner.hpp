@@ -72,6 +72,7 @@ class LocalPlanner final : public Planner {
   IkSamples samples_;
   Labelling labelling_;
   std::optional<RiskFunction> risk_;
+  svm::SolverWorkspace workspace_;  // each query's SVM reuses the last one's cache memory
 };
 
 }  // namespace svmp::planners

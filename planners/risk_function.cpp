@@ -72,10 +72,11 @@ RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations,
 
 RiskFunction RiskFunction::trainBinary(const Eigen::MatrixXd& configurations, const Eigen::VectorXd& y,
                                        const Eigen::VectorXd& C, double sigma, const svm::SolverOptions& solver,
-                                       const Eigen::VectorXd& scale, bool truncated) {
+                                       const Eigen::VectorXd& scale, bool truncated,
+                                       svm::SolverWorkspace* workspace) {
   const Eigen::MatrixXd scaled = scale.asDiagonal() * configurations;
   const svm::Kernel kernel = svm::Kernel::rbfFromSigma(sigma);
-  const svm::SolverResult solution = svm::solveBinary(scaled, y, C, kernel, solver);
+  const svm::SolverResult solution = svm::solveBinary(scaled, y, C, kernel, solver, nullptr, workspace);
   return RiskFunction({svm::BinaryModel::fromSolution(scaled, y, solution, kernel)}, {1}, scale, truncated);
 }
 

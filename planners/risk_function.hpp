@@ -61,9 +61,12 @@ class RiskFunction {
                                      double sigma, double C, const std::map<int, double>& class_weight,
                                      const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
                                      bool truncated, int threads, const robots::Robot* fk = nullptr);
+  // `workspace`: kept by a caller that trains again and again, so that each solve reuses the last
+  // one's cache memory instead of faulting in fresh pages (svm/solver_workspace.hpp).
   static RiskFunction trainBinary(const Eigen::MatrixXd& configurations, const Eigen::VectorXd& y,
                                   const Eigen::VectorXd& C, double sigma, const svm::SolverOptions& solver,
-                                  const Eigen::VectorXd& scale, bool truncated);
+                                  const Eigen::VectorXd& scale, bool truncated,
+                                  svm::SolverWorkspace* workspace = nullptr);
 
   int numClasses() const { return static_cast<int>(models_.size()); }
   const std::vector<int>& classes() const { return classes_; }
