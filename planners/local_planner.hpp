@@ -18,6 +18,7 @@
 #include "planners/ik_obstacle_sampler.hpp"
 #include "planners/planner.hpp"
 #include "planners/risk_function.hpp"
+#include "svm/solver_workspace.hpp"
 
 namespace svmp::planners {
 
