@@ -51,11 +51,7 @@ RiskFunction::RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int
     if (m.dim() != features)
       throw std::invalid_argument("risk function: model dimension differs from the features'");
   if (truncated && models_.front().kernel().isPlainRbf())
-    for (const auto& m : models_) {
-      truncated_.emplace_back(m);
-      // Above 16 dimensions the evaluator's radius search is scalar, no faster than the model's sum.
-      if (m.dim() <= 16) exact_.emplace_back(m, svm::TruncatedRbfEvaluator::kExactCutoff);
-    }
+    for (const auto& m : models_) truncated_.emplace_back(m);
 }
 
 RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations, const std::vector<int>& labels,
@@ -87,9 +83,12 @@ int RiskFunction::classIndex(int label) const {
 
 double RiskFunction::evaluateScaled(int k, const double* x, double* grad_x, bool exact) const {
   if (!fk_) {
-    const auto& evaluators = exact ? exact_ : truncated_;
-    if (!evaluators.empty())
-      return grad_x ? evaluators[k].decisionAndGradient(x, grad_x) : evaluators[k].decision(x);
+    if (!truncated_.empty() && !exact)
+      return grad_x ? truncated_[k].decisionAndGradient(x, grad_x) : truncated_[k].decision(x);
+    // The exact sum through the evaluator's vectorised leaves; above 16 dimensions its radius search
+    // is scalar, no faster than the model's own sum.
+    if (!truncated_.empty() && models_[k].dim() <= 16)
+      return grad_x ? truncated_[k].exactDecisionAndGradient(x, grad_x) : truncated_[k].exactDecision(x);
     return grad_x ? models_[k].decisionAndGradient(x, grad_x) : models_[k].decision(x);
   }
   const int n = static_cast<int>(scale_.size());

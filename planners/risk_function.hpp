@@ -94,7 +94,6 @@ class RiskFunction {
 
   std::vector<svm::BinaryModel> models_;
   std::vector<svm::TruncatedRbfEvaluator> truncated_;  // empty unless RBF and truncation asked for
-  std::vector<svm::TruncatedRbfEvaluator> exact_;      // with truncated_ (up to 16-D): the full sums, vectorised
   std::vector<int> classes_;
   Eigen::VectorXd scale_;
   const robots::Robot* fk_ = nullptr;

@@ -9,18 +9,17 @@
 namespace svmp::planners {
 namespace {
 
-// V is evaluated thousands of times per following (arc searches, bisections, plane fits): through
-// the vectorised evaluator with the exact cut-off, the full sum at a fraction of the model's scalar
-// loop (svpp_3d20_01: 61% of svpp's time was that loop).
-using FullSum = svm::TruncatedRbfEvaluator;
-FullSum fullSum(const svm::BinaryModel& model) { return FullSum(model, FullSum::kExactCutoff); }
+// V is evaluated thousands of times per following (arc searches, bisections, plane fits): by the
+// evaluator's exact sum, the full sum at a fraction of the model's scalar loop (svpp_3d20_01: 61% of
+// svpp's time was that loop).
+using Evaluator = svm::TruncatedRbfEvaluator;
 
 constexpr int kArcSamples = 25;  // points on the 2-D search arc (5 deg apart over 120 deg)
 constexpr int kBisections = 30;
 constexpr int kCirclePoints = 8;  // plane points of the 3-D fit
 constexpr int kNewtonSteps = 6;
 
-double decision(const FullSum& v, const Eigen::VectorXd& p) { return v.decision(p.data()); }
+double decision(const Evaluator& v, const Eigen::VectorXd& p) { return v.exactDecision(p.data()); }
 
 bool inside(const Eigen::VectorXd& p, const SurfaceFollowing& o) {
   return (p.array() >= o.lower.array()).all() && (p.array() <= o.upper.array()).all();
@@ -67,20 +66,20 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> planeBasis(const Eigen::Vector3d& n)
 // Sum over points on the circle of radius r in the plane (p, n) of their distance to V = 0, to
 // first order |V(x)| / |grad V(p)|; the gradient norm at p is one factor for all planes, so it is
 // left out.
-double fitCost(const FullSum& v, const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r) {
+double fitCost(const Evaluator& v, const Eigen::Vector3d& p, const Eigen::Vector3d& n, double r) {
   const auto [e1, e2] = planeBasis(n);
   double cost = 0;
   for (int k = 0; k < kCirclePoints; ++k) {
     const double a = 2 * std::numbers::pi * k / kCirclePoints;
     const Eigen::Vector3d x = p + r * (std::cos(a) * e1 + std::sin(a) * e2);
-    cost += std::abs(v.decision(x.data()));
+    cost += std::abs(v.exactDecision(x.data()));
   }
   return cost;
 }
 
-Eigen::Vector3d fitPlane(const FullSum& v, const Eigen::Vector3d& p, double radius) {
+Eigen::Vector3d fitPlane(const Evaluator& v, const Eigen::Vector3d& p, double radius) {
   Eigen::Vector3d grad;
-  v.decisionAndGradient(p.data(), grad.data());
+  v.exactDecisionAndGradient(p.data(), grad.data());
   Eigen::Vector3d normal =
       grad.norm() > 1e-12 ? Eigen::Vector3d(grad.normalized()) : Eigen::Vector3d::UnitZ();
   // Pitch and roll about the current normal on 3 x 3 grids of shrinking span (+-20, +-6.7, +-2.2
@@ -124,7 +123,7 @@ const char* followStatusName(FollowStatus status) {
 FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorXd& start,
                              const Eigen::VectorXd& goal, const Eigen::VectorXd& heading,
                              const SurfaceFollowing& o) {
-  const FullSum full = fullSum(model);
+  const Evaluator full(model);
   FollowResult r;
   r.path = {start};
   double direction = std::atan2(heading.y(), heading.x());
@@ -176,14 +175,14 @@ FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorX
 
 Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vector3d& p,
                                 double radius) {
-  return fitPlane(fullSum(model), p, radius);
+  return fitPlane(Evaluator(model), p, radius);
 }
 
 FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorXd& start,
                              const Eigen::VectorXd& goal,
                              const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& target,
                              const SurfaceFollowing& o) {
-  const FullSum full = fullSum(model);
+  const Evaluator full(model);
   FollowResult r;
   r.path = {start};
   Eigen::Vector3d grad;
@@ -200,14 +199,14 @@ FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorX
     Eigen::Vector3d next = p + o.step * direction.normalized();
     double v = 0;
     for (int k = 0; k < kNewtonSteps; ++k) {
-      v = full.decisionAndGradient(next.data(), grad.data());
+      v = full.exactDecisionAndGradient(next.data(), grad.data());
       const double g2 = grad.squaredNorm();
       if (std::abs(v) < 1e-6 || g2 < 1e-24) break;
       Eigen::Vector3d correction = -(v / g2) * grad;
       if (correction.norm() > 0.5 * o.step) correction *= 0.5 * o.step / correction.norm();
       next += correction;
     }
-    v = full.decision(next.data());
+    v = full.exactDecision(next.data());
     if (!(std::abs(v) < 1.0)) {
       r.status = FollowStatus::kNoSafePoint;
       return r;

@@ -8,7 +8,6 @@
 #include <nanoflann.hpp>
 #include <numeric>
 #include <stdexcept>
-#include <string>
 #include <vector>
 
 namespace svmp::svm {
@@ -148,18 +147,15 @@ struct TruncatedRbfEvaluator::Blocks {
   }
 };
 
-TruncatedRbfEvaluator::TruncatedRbfEvaluator(const BinaryModel& model, double cutoff)
+TruncatedRbfEvaluator::TruncatedRbfEvaluator(const BinaryModel& model)
     : dim_(model.dim()), coef_(model.coefficients()), bias_(model.bias()) {
   if (!model.kernel().isPlainRbf())
     throw std::invalid_argument(
         std::string("TruncatedRbfEvaluator: needs a plain RBF kernel, got ") +
         kernelTypeName(model.kernel().type) + (model.kernel().block > 0 ? " (block-sum)" : ""));
-  if (!(cutoff > 0) || !std::isfinite(cutoff))
-    throw std::invalid_argument("TruncatedRbfEvaluator: cutoff must be positive and finite, got " +
-                                std::to_string(cutoff));
   gamma_ = model.kernel().gamma;
-  squared_radius_ = cutoff / gamma_;
-  bound_ = coef_.cwiseAbs().sum() * std::exp(-cutoff);
+  squared_radius_ = 5.0 / gamma_;
+  bound_ = coef_.cwiseAbs().sum() * std::exp(-5.0);
   if (model.numSupportVectors() == 0) return;
   if (dim_ <= 16)
     blocks_ = std::make_unique<Blocks>(model.supportVectors(), coef_);
@@ -171,26 +167,36 @@ TruncatedRbfEvaluator::~TruncatedRbfEvaluator() = default;
 TruncatedRbfEvaluator::TruncatedRbfEvaluator(TruncatedRbfEvaluator&&) noexcept = default;
 TruncatedRbfEvaluator& TruncatedRbfEvaluator::operator=(TruncatedRbfEvaluator&&) noexcept = default;
 
-double TruncatedRbfEvaluator::decision(const double* q) const {
-  if (blocks_)
-    return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius_, nullptr);
-  if (!tree_) return bias_;
-  SumResultSet<false> rs{tree_->points, coef_.data(), q, -gamma_, squared_radius_};
-  tree_->index.findNeighbors(rs, q, nanoflann::SearchParams(32, 0.0f, false));
-  return rs.sum + bias_;
-}
-
-double TruncatedRbfEvaluator::decisionAndGradient(const double* q, double* grad) const {
+double TruncatedRbfEvaluator::sum(const double* q, double* grad, double squared_radius) const {
   const int d = dim();
-  for (int k = 0; k < d; ++k) grad[k] = 0.0;
-  if (blocks_)
-    return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius_, grad);
+  if (grad)
+    for (int k = 0; k < d; ++k) grad[k] = 0.0;
+  if (blocks_) return bias_ + loops::truncatedRbfSum(blocks_->view, q, gamma_, squared_radius, grad);
   if (!tree_) return bias_;
-  SumResultSet<true> rs{tree_->points, coef_.data(), q, -gamma_, squared_radius_};
+  if (!grad) {
+    SumResultSet<false> rs{tree_->points, coef_.data(), q, -gamma_, squared_radius};
+    tree_->index.findNeighbors(rs, q, nanoflann::SearchParams(32, 0.0f, false));
+    return rs.sum + bias_;
+  }
+  SumResultSet<true> rs{tree_->points, coef_.data(), q, -gamma_, squared_radius};
   rs.grad = grad;
   rs.d = d;
   tree_->index.findNeighbors(rs, q, nanoflann::SearchParams(32, 0.0f, false));
   return rs.sum + bias_;
+}
+
+double TruncatedRbfEvaluator::decision(const double* q) const { return sum(q, nullptr, squared_radius_); }
+
+double TruncatedRbfEvaluator::decisionAndGradient(const double* q, double* grad) const {
+  return sum(q, grad, squared_radius_);
+}
+
+double TruncatedRbfEvaluator::exactDecision(const double* q) const {
+  return sum(q, nullptr, kExactCutoff / gamma_);
+}
+
+double TruncatedRbfEvaluator::exactDecisionAndGradient(const double* q, double* grad) const {
+  return sum(q, grad, kExactCutoff / gamma_);
 }
 
 }  // namespace svmp::svm

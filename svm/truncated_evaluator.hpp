@@ -12,9 +12,10 @@
 // For d > 16 a nanoflann k-d tree radius search sums the terms inside its result set.
 //
 // The truncated F differs from the full sum by at most truncationBound() = sum_i |coef_i| exp(-5).
-// Another cut-off c counts d^2 < c/gamma (bound sum_i |coef_i| exp(-c)). With kExactCutoff the bound
-// is below the rounding of the full sum (exp(-37) < 1e-16), so the vectorised sum is the full sum,
-// at a fraction of BinaryModel's scalar loop (the risk descent's exact polish).
+// The exact variants count d^2 < kExactCutoff/gamma through the same leaves: the terms they skip
+// are below exp(-37) < 1e-16 of sum_i |coef_i|, under the rounding of the full sum, so they are the
+// full sum at a fraction of BinaryModel's scalar loop (the risk descent's exact polish, SVPP's
+// surface following).
 // Thread-safety: decision() and decisionAndGradient() are const and keep all scratch on the stack
 // (nanoflann's search is const); any number of threads may evaluate one evaluator concurrently.
 #pragma once
@@ -29,8 +30,8 @@ namespace svmp::svm {
 class TruncatedRbfEvaluator {
  public:
   // Copies the support vectors; the model may be destroyed afterwards. Throws std::invalid_argument
-  // if the kernel is not a plain RBF kernel or the cut-off is not positive and finite.
-  explicit TruncatedRbfEvaluator(const BinaryModel& model, double cutoff = 5.0);
+  // if the kernel is not a plain RBF kernel.
+  explicit TruncatedRbfEvaluator(const BinaryModel& model);
   static constexpr double kExactCutoff = 37.0;
   ~TruncatedRbfEvaluator();
   TruncatedRbfEvaluator(TruncatedRbfEvaluator&&) noexcept;
@@ -38,15 +39,19 @@ class TruncatedRbfEvaluator {
 
   double decision(const double* q) const;
   double decisionAndGradient(const double* q, double* grad) const;
+  double exactDecision(const double* q) const;
+  double exactDecisionAndGradient(const double* q, double* grad) const;
 
   double truncationBound() const { return bound_; }
-  double squaredRadius() const { return squared_radius_; }  // cutoff / gamma
+  double squaredRadius() const { return squared_radius_; }  // 5 / gamma
   int dim() const { return dim_; }
   double bias() const { return bias_; }
 
  private:
   struct Tree;
   struct Blocks;
+  // F (and grad F when `grad`) over the terms with d^2 < squared_radius.
+  double sum(const double* q, double* grad, double squared_radius) const;
   int dim_ = 0;
   Eigen::VectorXd coef_;
   double bias_ = 0.0;

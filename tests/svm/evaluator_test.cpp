@@ -79,13 +79,14 @@ TEST(TruncatedRbfEvaluator, MatchesBruteForceAndBoundsTheFullSum) {
   }
 }
 
-// The exact cut-off is the full sum (the risk descent's polish): the same values and gradients as
-// the model's scalar loop, near the data and far from it, where the default cut-off keeps nothing.
-TEST(TruncatedRbfEvaluator, ExactCutoffIsTheFullSum) {
+// The exact variants are the full sum (the risk descent's polish, SVPP): the same values and
+// gradients as the model's scalar loop, near the data and far from it, where the truncated F keeps
+// nothing.
+TEST(TruncatedRbfEvaluator, ExactVariantsAreTheFullSum) {
+  EXPECT_LT(std::exp(-TruncatedRbfEvaluator::kExactCutoff), 1e-16);
   for (int d : {2, 6}) {
     const BinaryModel m = trainedModel(d, 2000, 70 + d);
-    const TruncatedRbfEvaluator exact(m, TruncatedRbfEvaluator::kExactCutoff), truncated(m);
-    EXPECT_LT(exact.truncationBound(), 1e-16 * m.coefficients().cwiseAbs().sum());
+    const TruncatedRbfEvaluator ev(m);
     const auto p = testing::makeBallProblem(d, 2000, 3, 70 + d);
     Eigen::MatrixXd Q = testing::nearQueries(p.X, 400, p.ball_radius / 4, 5);
     Q.rightCols(100) *= 1.5;  // some beyond the data
@@ -93,18 +94,16 @@ TEST(TruncatedRbfEvaluator, ExactCutoffIsTheFullSum) {
     int differs = 0;
     for (int s = 0; s < Q.cols(); ++s) {
       std::vector<double> g(d), gf(d), gt(d);
-      const double f = exact.decisionAndGradient(Q.col(s).data(), g.data());
+      const double f = ev.exactDecisionAndGradient(Q.col(s).data(), g.data());
       const double full = m.decisionAndGradient(Q.col(s).data(), gf.data());
       EXPECT_NEAR(f, full, 1e-13 * scale);
-      EXPECT_NEAR(exact.decision(Q.col(s).data()), full, 1e-13 * scale);
+      EXPECT_NEAR(ev.exactDecision(Q.col(s).data()), full, 1e-13 * scale);
       // Each gradient term is at most |coef| sqrt(2 gamma / e).
       for (int k = 0; k < d; ++k) EXPECT_NEAR(g[k], gf[k], 1e-13 * scale * std::sqrt(2 * m.kernel().gamma));
-      differs += std::abs(truncated.decisionAndGradient(Q.col(s).data(), gt.data()) - full) > 1e-9 * scale;
+      differs += std::abs(ev.decisionAndGradient(Q.col(s).data(), gt.data()) - full) > 1e-9 * scale;
     }
-    EXPECT_GT(differs, 0);  // the default cut-off leaves terms out that the exact one keeps
+    EXPECT_GT(differs, 0);  // the truncated F leaves terms out that the exact sum keeps
   }
-  const BinaryModel m = trainedModel(2, 200, 3);
-  for (double c : {0.0, -1.0, std::nan("")}) EXPECT_THROW(TruncatedRbfEvaluator(m, c), std::invalid_argument);
 }
 
 // d > 16 takes the nanoflann radius-search path.
