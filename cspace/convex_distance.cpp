@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace svmp::cspace {
 namespace {
@@ -112,30 +113,65 @@ double separationAlong(const robots::Shape& a, const Eigen::Isometry3d& pa, cons
   return v.dot(w) / norm;
 }
 
-double distanceLowerBound(const robots::Shape& a, const Eigen::Isometry3d& pa,
-                          const robots::Shape& b, const Eigen::Isometry3d& pb,
+namespace {
+
+// A sphere or a capsule is its core (a point, a segment) grown by its radius: GJK runs on the cores,
+// whose difference with a box is a polytope, so it ends exactly in a few iterations, where on the
+// round shapes it only converges (slowly when they nearly touch). The separation along any
+// direction is the cores' less both radii.
+robots::Shape core(const robots::Shape& s, double& radius) {
+  if (s.kind != robots::ShapeKind::kSphere && s.kind != robots::ShapeKind::kCapsule) return s;
+  radius += s.dims.x();
+  robots::Shape c = s;
+  c.dims.x() = 0;
+  return c;
+}
+
+// A sphere against a box in closed form: the plane normal to the centre's offset from its nearest
+// point of the box gives the exact distance. Empty unless the pair is a sphere and a box.
+std::optional<double> sphereBoxSeparation(const robots::Shape& a, const Eigen::Isometry3d& pa,
+                                          const robots::Shape& b, const Eigen::Isometry3d& pb) {
+  const bool a_sphere = a.kind == robots::ShapeKind::kSphere && b.kind == robots::ShapeKind::kBox;
+  if (!a_sphere && !(b.kind == robots::ShapeKind::kSphere && a.kind == robots::ShapeKind::kBox)) return {};
+  const Eigen::Isometry3d& box_pose = a_sphere ? pb : pa;
+  const Eigen::Vector3d centre = box_pose.inverse() * (a_sphere ? pa : pb).translation();
+  const Eigen::Vector3d half = 0.5 * (a_sphere ? b : a).dims;
+  const Eigen::Vector3d offset = centre - centre.cwiseMax(-half).cwiseMin(half);
+  if (!(offset.squaredNorm() > 0)) return 0.0;  // the centre inside the box: they overlap
+  const Eigen::Vector3d v = box_pose.linear() * offset;  // from the box towards the sphere
+  return separationAlong(a, pa, b, pb, a_sphere ? v : Eigen::Vector3d(-v));
+}
+
+}  // namespace
+
+double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d& pa,
+                          const robots::Shape& b_shape, const Eigen::Isometry3d& pb,
                           const Eigen::Vector3d& hint, double rel_gap) {
+  if (const auto exact = sphereBoxSeparation(a_shape, pa, b_shape, pb)) return *exact;
+  double margin = 0;
+  const robots::Shape a = core(a_shape, margin), b = core(b_shape, margin);
   Eigen::Vector3d v = hint;
   if (!(v.norm() > 0) || !v.allFinite()) v = pa.translation() - pb.translation();
   if (!(v.norm() > 0)) v = Eigen::Vector3d::UnitX();
-  double best = -std::numeric_limits<double>::infinity();
+  double best = -std::numeric_limits<double>::infinity();  // of the cores
   Simplex s;
   for (int iteration = 0; iteration < 64; ++iteration) {
     const Eigen::Vector3d w = supportPoint(a, pa, -v) - supportPoint(b, pb, v);
     const double norm = v.norm();
     best = std::max(best, v.dot(w) / norm);
-    // |v| bounds the distance from above once v is a point of the simplex (the hint need not be).
-    if (norm - best <= rel_gap * norm) break;
+    // |v| bounds the cores' distance from above once v is a point of the simplex (the hint need not
+    // be); within the margin the shapes may touch, and the bound is <= 0 whatever follows.
+    if (s.n > 0 && (norm - best <= rel_gap * (norm - margin) || norm <= margin)) break;
     bool known = false;
     for (int i = 0; i < s.n; ++i)
       known = known || (s.p[i] - w).squaredNorm() <= 1e-28 * (1 + w.squaredNorm());
     if (known || s.n == 4) break;  // no progress possible (numerical stall)
     s.p[s.n++] = w;
     v = closestToOrigin(s);
-    // The origin in the hull (or on it): A and B overlap; best is then <= 0 as well.
+    // The origin in the hull (or on it): the cores overlap; best is then <= 0 as well.
     if (v.squaredNorm() <= 1e-30 || s.n == 4) break;
   }
-  return best;
+  return best - margin;
 }
 
 }  // namespace svmp::cspace

@@ -73,6 +73,47 @@ TEST(ConvexDistanceTest, NeverAboveThePointsDistanceAndNotPositiveWhenOverlappin
       }
 }
 
+// Capsules against boxes, as the certified validator asks for a link near an obstacle: within the
+// validator's 1e-3 of the distance however close they come (GJK runs on the capsule's segment, so
+// it ends exactly). The distance: the segment's nearest point to the box, by golden-section search
+// (the point-box distance is convex along the segment).
+TEST(ConvexDistanceTest, CapsuleAgainstBoxWithinTheRequestedGapDownToContact) {
+  std::mt19937_64 rng(11);
+  const Shape box = Shape::box(Eigen::Vector3d(0.6, 0.4, 0.02));
+  const Eigen::Vector3d half(0.3, 0.2, 0.01);
+  auto pointToBox = [&](const Eigen::Vector3d& p) { return (p.cwiseAbs() - half).cwiseMax(0.0).norm(); };
+  for (int trial = 0; trial < 200; ++trial) {
+    const Shape capsule = Shape::capsule(0.04, 0.3);
+    Eigen::Isometry3d pose = randomPose(rng, 0);
+    const Eigen::Vector3d axis = pose.linear().col(2);
+    auto segmentDistance = [&](const Eigen::Isometry3d& at) {
+      double lo = -0.15, hi = 0.15;
+      const double g = 0.5 * (std::sqrt(5.0) - 1);
+      auto at_t = [&](double t) { return pointToBox(at.translation() + t * axis); };
+      for (int i = 0; i < 200; ++i) {
+        const double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
+        if (at_t(m1) < at_t(m2))
+          hi = m2;
+        else
+          lo = m1;
+      }
+      return at_t(0.5 * (lo + hi)) - 0.04;
+    };
+    // Above the board, then lowered until the gap is 10^-(1..5) m.
+    pose.translation() = Eigen::Vector3d(0.1, -0.05, 0.5);
+    const double start = segmentDistance(pose);
+    for (double gap : {1e-1, 1e-2, 1e-3, 1e-4, 1e-5}) {
+      Eigen::Isometry3d at = pose;
+      at.translation().z() -= start - gap;
+      const double truth = segmentDistance(at);
+      const double lower = distanceLowerBound(capsule, at, box, Eigen::Isometry3d::Identity(),
+                                              at.translation(), 1e-3);
+      EXPECT_LE(lower, truth + 1e-12) << "trial " << trial << " gap " << gap;
+      EXPECT_GE(lower, (1 - 1e-3) * truth - 1e-12) << "trial " << trial << " gap " << gap;
+    }
+  }
+}
+
 TEST(ConvexDistanceTest, ExactForSpheresAndForAPointAgainstABox) {
   const Shape s1 = Shape::sphere(0.3), s2 = Shape::sphere(0.2),
               cube = Shape::box(Eigen::Vector3d(1, 2, 3));
