@@ -4,11 +4,13 @@
 // and then overestimates: by millimetres for box-capsule and cylinder pairs, and by up to half the
 // distance for thin coplanar boxes (planar arm links against a block: 0.73 reported for 0.48), so
 // its value cannot enter a proof. Any unit direction s gives the bound min over x in A - B of x . s
-// (a separating plane); this module evaluates it along FCL's own direction and, when that does not
-// confirm FCL's value, along the directions of a GJK run of its own (Gilbert, Johnson, Keerthi
-// 1988, with van den Bergen's lower-bound stop). A bug there can only loosen the bound: every value
-// returned is such a plane's separation, never a distance taken on trust. Positive means the shapes
-// are disjoint (one inside the other included).
+// (a separating plane); this module evaluates it along the directions of a GJK run of its own
+// (Gilbert, Johnson, Keerthi 1988, with van den Bergen's lower-bound stop) on the shapes' cores: a
+// capsule is its segment and a sphere its centre, grown by their radii, so against a box the run is
+// on a polytope and ends exactly (on round shapes GJK only converges). A sphere against a box is in
+// closed form. A bug there can only loosen the bound: every value returned is such a plane's
+// separation, never a distance taken on trust. Positive means the shapes are disjoint (one inside
+// the other included).
 //
 // Thread safety: pure functions.
 #include <Eigen/Geometry>
@@ -25,8 +27,8 @@ Eigen::Vector3d supportPoint(const robots::Shape& s, const Eigen::Isometry3d& po
 double separationAlong(const robots::Shape& a, const Eigen::Isometry3d& pa, const robots::Shape& b,
                        const Eigen::Isometry3d& pb, const Eigen::Vector3d& v);
 
-// The largest separation found: along `hint` (a vector of A - B, e.g. p_A - p_B from FCL's nearest
-// points), then along a GJK run until it is within `rel_gap` of the GJK upper bound, or after 64
+// The largest separation found: along `hint` (a vector of A - B, e.g. the centres' offset), then
+// along a GJK run until it is within `rel_gap` of the GJK upper bound, or after 64
 // iterations. <= the true distance; <= 0 when no separating plane was found (touching,
 // overlapping).
 double distanceLowerBound(const robots::Shape& a, const Eigen::Isometry3d& pa,
