@@ -1,6 +1,6 @@
 #include "cspace/convex_distance.hpp"
 
-#include <Eigen/LU>
+#include <Eigen/LU>  // determinant of fixed-size matrices
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,16 +19,25 @@ struct Simplex {
 };
 
 // The point of the affine hull of the points idx[0..K] closest to the origin, with its barycentric
-// weights; false when the points are affinely dependent (a smaller subset covers that case).
+// weights; false when the points are affinely dependent (a smaller subset covers that case). The
+// normal equations (Gram matrix of the edges from the first point) are solved by Cramer's rule:
+// at most 3x3, where a general factorisation cost most of a distance query.
 template <int K>
 bool projectOrigin(const Simplex& s, const int* idx, Eigen::Vector3d& x, double* w) {
   Eigen::Matrix<double, 3, K> e;
   for (int i = 0; i < K; ++i) e.col(i) = s.p[idx[i + 1]] - s.p[idx[0]];
   const Eigen::Matrix<double, K, K> g = e.transpose() * e;
-  Eigen::FullPivLU<Eigen::Matrix<double, K, K>> lu(g);
-  lu.setThreshold(1e-12);
-  if (!lu.isInvertible()) return false;
-  const Eigen::Matrix<double, K, 1> lambda = lu.solve(-e.transpose() * s.p[idx[0]]);
+  const Eigen::Matrix<double, K, 1> r = -e.transpose() * s.p[idx[0]];
+  // Singular when the determinant is below 1e-12 of the product of the diagonal (Hadamard's bound
+  // on it): the edges are then dependent to within rounding.
+  const double det = g.determinant(), scale = g.diagonal().prod();
+  if (!(std::abs(det) > 1e-12 * scale)) return false;
+  Eigen::Matrix<double, K, 1> lambda;
+  for (int i = 0; i < K; ++i) {
+    Eigen::Matrix<double, K, K> gi = g;
+    gi.col(i) = r;
+    lambda[i] = gi.determinant() / det;
+  }
   x = s.p[idx[0]] + e * lambda;
   w[0] = 1 - lambda.sum();
   for (int i = 0; i < K; ++i) w[i + 1] = lambda[i];
