@@ -71,7 +71,8 @@ std::vector<Eigen::VectorXd> withoutRepeats(const std::vector<Eigen::VectorXd>& 
 SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
                              const cspace::ValidityChecker& checker,
                              const cspace::MotionValidator& certifier,
-                             const cspace::ConfigurationSpace& space, const SvppOptions& options) {
+                             const cspace::ConfigurationSpace& space, const SvppOptions& options,
+                             svm::SolverWorkspace* workspace) {
   SvmSmoothing out;
   out.path = given;
   const auto* point = dynamic_cast<const robots::PointRobot*>(&checker.robot());
@@ -172,7 +173,7 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
   }
   set.shrinkToFit();
 
-  const svm::BinaryModel model = trainSvppModel(set, options.gamma, options.C, options.eps);
+  const svm::BinaryModel model = trainSvppModel(set, options.gamma, options.C, options.eps, workspace);
   out.support_vectors = model.numSupportVectors();
   cspace::Query query;
   query.start = start;

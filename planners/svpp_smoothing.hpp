@@ -16,7 +16,8 @@
 //     arc search of Fig. 3; 3-D: the plane fit of Fig. 5, heading for the point d_g ahead on the
 //     given path),
 //   - every segment proven free by the certifier. When any step fails, the given path is kept.
-// Thread safety: a pure function; the checker and certifier are used through their const methods.
+// Thread safety: a pure function (one workspace per thread); the checker and certifier are used
+// through their const methods.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "cspace/motion_validator.hpp"
 #include "cspace/validity_checker.hpp"
 #include "planners/svpp_planner.hpp"
+#include "svm/solver_workspace.hpp"
 
 namespace svmp::planners {
 
@@ -35,10 +37,12 @@ struct SvmSmoothing {
 };
 
 // `path` runs from start to goal; `certifier` proves the smoothed path (a
-// CertifiedMotionValidator).
+// CertifiedMotionValidator). `workspace`, when given, is kept by the caller between paths: its
+// kernel cache's memory serves the next path's SVM instead of being faulted in afresh.
 SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& path,
                              const cspace::ValidityChecker& checker,
                              const cspace::MotionValidator& certifier,
-                             const cspace::ConfigurationSpace& space, const SvppOptions& options);
+                             const cspace::ConfigurationSpace& space, const SvppOptions& options,
+                             svm::SolverWorkspace* workspace = nullptr);
 
 }  // namespace svmp::planners

@@ -24,6 +24,7 @@
 #include "planners/path_simplifier.hpp"
 #include "planners/planner_registry.hpp"
 #include "planners/svpp_smoothing.hpp"
+#include "svm/solver_workspace.hpp"
 #include "planners/verify_repair.hpp"
 
 namespace svmp::experiments {
@@ -199,6 +200,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
   std::vector<PlannerRuns> results;
   for (size_t p = 0; p < planners.size(); ++p) results.push_back({options.planners[p], {}, parameters[p]});
   const auto& queries = scenario.queries;
+  svm::SolverWorkspace smoothing;  // --simplify svpp: each path's SVM reuses the last one's cache memory
   // Seed by seed, every planner in turn: a change of load while the run lasts slows each planner
   // alike, so their ratios stay fair (one planner's runs all after another's would not).
   for (int r = 0; r < options.runs; ++r) {
@@ -243,7 +245,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
           if (options.simplify_svm) {
             const auto svpp = planners::SvppOptions::fromParameters(scenario.paramsFor("svpp"));
             auto smoothed = planners::smoothPathBySvm(record.result.path, world.checker, world.certifier,
-                                                      world.space, svpp);
+                                                      world.space, svpp, &smoothing);
             if (!smoothed.smoothed)
               log << "  " << runs.planner << " seed " << seed << ": path kept (" << smoothed.why << ")\n";
             record.result.path = std::move(smoothed.path);
