@@ -183,4 +183,27 @@ double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d&
   return best - margin;
 }
 
+std::optional<bool> intersects(const robots::Shape& a_shape, const Eigen::Isometry3d& pa,
+                               const robots::Shape& b_shape, const Eigen::Isometry3d& pb) {
+  if (const auto exact = sphereBoxSeparation(a_shape, pa, b_shape, pb)) return *exact <= 0;
+  double margin = 0;
+  const robots::Shape a = core(a_shape, margin), b = core(b_shape, margin);
+  Eigen::Vector3d v = pa.translation() - pb.translation();
+  if (!(v.squaredNorm() > 0)) v = Eigen::Vector3d::UnitX();
+  Simplex s;
+  for (int iteration = 0; iteration < 64; ++iteration) {
+    const Eigen::Vector3d w = supportPoint(a, pa, -v) - supportPoint(b, pb, v);
+    // A plane separating the cores by more than the radii: apart.
+    if (v.dot(w) > margin * v.norm()) return false;
+    for (int i = 0; i < s.n; ++i)
+      if ((s.p[i] - w).squaredNorm() <= 1e-28 * (1 + w.squaredNorm())) return std::nullopt;  // stalled
+    s.p[s.n++] = w;
+    v = closestToOrigin(s);
+    // A point of the cores' difference within the radii of the origin (or the origin enclosed):
+    // two points of the cores that close, so the shapes touch.
+    if (s.n == 4 || v.squaredNorm() <= margin * margin + 1e-30) return true;
+  }
+  return std::nullopt;
+}
+
 }  // namespace svmp::cspace

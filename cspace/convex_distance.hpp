@@ -14,6 +14,7 @@
 //
 // Thread safety: pure functions.
 #include <Eigen/Geometry>
+#include <optional>
 
 #include "robots/shape.hpp"
 
@@ -34,5 +35,13 @@ double separationAlong(const robots::Shape& a, const Eigen::Isometry3d& pa, cons
 double distanceLowerBound(const robots::Shape& a, const Eigen::Isometry3d& pa,
                           const robots::Shape& b, const Eigen::Isometry3d& pb,
                           const Eigen::Vector3d& hint, double rel_gap = 1e-6);
+
+// Whether the placed shapes intersect (touching included), when a GJK run on their cores decides it:
+// a plane separating the cores by more than the radii proves them apart, a point of the cores'
+// difference within the radii of the origin proves them touching (a sphere against a box in closed
+// form). Empty when the run stalls undecided (round shapes grazing each other): ask FCL then. The
+// collision checker's narrow phase (cspace/collision_checker.cpp).
+std::optional<bool> intersects(const robots::Shape& a, const Eigen::Isometry3d& pa, const robots::Shape& b,
+                               const Eigen::Isometry3d& pb);
 
 }  // namespace svmp::cspace

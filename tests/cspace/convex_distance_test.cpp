@@ -4,8 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
 
 #include "cspace/convex_distance.hpp"
 
@@ -112,6 +119,61 @@ TEST(ConvexDistanceTest, CapsuleAgainstBoxWithinTheRequestedGapDownToContact) {
       EXPECT_GE(lower, (1 - 1e-3) * truth - 1e-12) << "trial " << trial << " gap " << gap;
     }
   }
+}
+
+std::shared_ptr<fcl::CollisionGeometryd> fclGeometry(const Shape& s) {
+  switch (s.kind) {
+    case robots::ShapeKind::kBox:
+      return std::make_shared<fcl::Boxd>(s.dims);
+    case robots::ShapeKind::kSphere:
+      return std::make_shared<fcl::Sphered>(s.dims.x());
+    case robots::ShapeKind::kCapsule:
+      return std::make_shared<fcl::Capsuled>(s.dims.x(), s.dims.y());
+    default:
+      return std::make_shared<fcl::Cylinderd>(s.dims.x(), s.dims.y());
+  }
+}
+
+// The checker's narrow phase against FCL's on every pair of primitives, half of them placed near
+// contact (the second shape slid along the centres' line to within 1 mm of the first's bound):
+// wherever our GJK decides, it decides as FCL does, and it leaves few pairs to FCL.
+TEST(ConvexDistanceTest, IntersectsAgreesWithFclAndRarelyDefers) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> gap(-1e-3, 1e-3);
+  int decided = 0, total = 0, hits = 0, near_pairs = 0;
+  for (int ka = 0; ka < 4; ++ka)
+    for (int kb = 0; kb < 4; ++kb)
+      for (int trial = 0; trial < 400; ++trial) {
+        const Shape a = randomShape(ka, rng), b = randomShape(kb, rng);
+        const Eigen::Isometry3d pa = randomPose(rng, 0.4);
+        Eigen::Isometry3d pb = randomPose(rng, 0.4);
+        if (trial % 2) {  // near contact: slide b until the separating bound is about `gap`
+          const Eigen::Vector3d axis = (pb.translation() - pa.translation()).normalized();
+          for (int step = 0; step < 60; ++step) {
+            const double d = distanceLowerBound(a, pa, b, pb, pa.translation() - pb.translation(), 1e-9);
+            const double move = d > 0 ? d - gap(rng) : 0.05;
+            pb.translation() += (d > 0 ? -move : move) * axis;
+            if (d > 0 && std::abs(move) < 1e-3) break;
+          }
+        }
+        if (trial % 2)
+          near_pairs += distanceLowerBound(a, pa, b, pb, pa.translation() - pb.translation(), 1e-9) < 1.1e-3;
+        fcl::CollisionObjectd oa(fclGeometry(a), pa.linear(), pa.translation());
+        fcl::CollisionObjectd ob(fclGeometry(b), pb.linear(), pb.translation());
+        fcl::CollisionRequestd request;
+        fcl::CollisionResultd result;
+        const bool fcl_hit = fcl::collide(&oa, &ob, request, result) > 0;
+        const auto ours = intersects(a, pa, b, pb);
+        ++total;
+        hits += fcl_hit;
+        if (!ours) continue;
+        ++decided;
+        EXPECT_EQ(*ours, fcl_hit) << "kinds " << ka << ", " << kb << " trial " << trial;
+      }
+  EXPECT_GT(hits, total / 5);          // both answers well represented
+  EXPECT_LT(hits, 4 * total / 5);
+  EXPECT_GT(decided, 0.95 * total);  // FCL's fallback stays rare
+  EXPECT_GT(near_pairs, 0.9 * total / 2);  // the slide found contact's neighbourhood
 }
 
 TEST(ConvexDistanceTest, ExactForSpheresAndForAPointAgainstABox) {
