@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
 #include <memory>
@@ -118,29 +119,38 @@ void BM_CertifiedSegment(benchmark::State& state, const std::string& name) {
   BM_MotionValidator<svmp::cspace::CertifiedMotionValidator>(state, name);
 }
 
-// One distance query's inner step, a link capsule against a board (the certified validator's
-// freeDistances, per pair): FCL's distance (libccd GJK, nearest points) followed by the separating
-// plane along its direction, which the checker ran until the sixteenth session, against our GJK
-// alone on the capsule's segment (cspace/convex_distance.hpp). 256 capsules 0.1 mm to 10 cm above
-// or beside the board, random orientations.
-void BM_CapsuleBoxDistance(benchmark::State& state, bool fcl_first) {
-  const Shape board = Shape::box(Eigen::Vector3d(0.8, 0.3, 0.02)), link = Shape::capsule(0.06, 0.2);
-  auto board_object = std::make_shared<fcl::CollisionObjectd>(std::make_shared<fcl::Boxd>(0.8, 0.3, 0.02));
+// Link capsules against a board, as the checker and the certifier meet them: 256 capsules, random
+// orientations, lowered onto the board until their gap is `gap` (10^-4..10^-1 m: the certifier's
+// distances) or -2..2 cm (the checker's tests, half of them hits).
+struct CapsulesOnABoard {
+  Shape board = Shape::box(Eigen::Vector3d(0.8, 0.3, 0.02)), link = Shape::capsule(0.06, 0.2);
+  std::shared_ptr<fcl::CollisionObjectd> board_object =
+      std::make_shared<fcl::CollisionObjectd>(std::make_shared<fcl::Boxd>(0.8, 0.3, 0.02));
   std::vector<Eigen::Isometry3d> poses;
   std::vector<std::shared_ptr<fcl::CollisionObjectd>> links;
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> unit(-1, 1), exponent(-4, -1);
-  while (poses.size() < 256) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized())
-                        .toRotationMatrix();
-    pose.translation() = Eigen::Vector3d(0.3 * unit(rng), 0.1 * unit(rng), 1.0);
-    // Lowered onto the board until the gap is 10^exponent (the lowest point of the capsule).
-    const double lowest = pose.translation().z() - std::abs(pose.linear()(2, 2)) * 0.1 - 0.06;
-    pose.translation().z() -= lowest - 0.01 - std::pow(10.0, exponent(rng));
-    poses.push_back(pose);
-    links.push_back(std::make_shared<fcl::CollisionObjectd>(std::make_shared<fcl::Capsuled>(0.06, 0.2), pose));
+
+  explicit CapsulesOnABoard(bool touching) {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> unit(-1, 1), exponent(-4, -1);
+    while (poses.size() < 256) {
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized())
+                          .toRotationMatrix();
+      pose.translation() = Eigen::Vector3d(0.3 * unit(rng), 0.1 * unit(rng), 1.0);
+      const double lowest = pose.translation().z() - std::abs(pose.linear()(2, 2)) * 0.1 - 0.06;
+      const double gap = touching ? 0.02 * unit(rng) : std::pow(10.0, exponent(rng));
+      pose.translation().z() -= lowest - 0.01 - gap;
+      poses.push_back(pose);
+      links.push_back(std::make_shared<fcl::CollisionObjectd>(std::make_shared<fcl::Capsuled>(0.06, 0.2), pose));
+    }
   }
+};
+
+// One distance query's inner step: FCL's distance (libccd GJK, nearest points) followed by the
+// separating plane along its direction, which the checker ran until the sixteenth session, against
+// our GJK alone on the capsule's segment (cspace/convex_distance.hpp).
+void BM_CapsuleBoxDistance(benchmark::State& state, bool fcl_first) {
+  const CapsulesOnABoard c(false);
   int i = 0;
   for (auto _ : state) {
     const int j = i++ & 255;
@@ -148,22 +158,42 @@ void BM_CapsuleBoxDistance(benchmark::State& state, bool fcl_first) {
     if (fcl_first) {
       fcl::DistanceRequestd request(true);
       fcl::DistanceResultd result;
-      fcl::distance(links[j].get(), board_object.get(), request, result);
-      d = svmp::cspace::distanceLowerBound(link, poses[j], board, Eigen::Isometry3d::Identity(),
+      fcl::distance(c.links[j].get(), c.board_object.get(), request, result);
+      d = svmp::cspace::distanceLowerBound(c.link, c.poses[j], c.board, Eigen::Isometry3d::Identity(),
                                             result.nearest_points[0] - result.nearest_points[1], 1e-3);
     } else {
-      d = svmp::cspace::distanceLowerBound(link, poses[j], board, Eigen::Isometry3d::Identity(),
-                                            poses[j].translation(), 1e-3);
+      d = svmp::cspace::distanceLowerBound(c.link, c.poses[j], c.board, Eigen::Isometry3d::Identity(),
+                                            c.poses[j].translation(), 1e-3);
     }
     benchmark::DoNotOptimize(d);
   }
   state.SetItemsProcessed(state.iterations());
 }
 
+// The checker's narrow phase on one pair: FCL's collide against our intersects.
+void BM_CapsuleBoxCollide(benchmark::State& state, bool fcl) {
+  const CapsulesOnABoard c(true);
+  int i = 0, hits = 0;
+  for (auto _ : state) {
+    const int j = i++ & 255;
+    if (fcl) {
+      fcl::CollisionRequestd request;
+      fcl::CollisionResultd result;
+      hits += fcl::collide(c.links[j].get(), c.board_object.get(), request, result) > 0;
+    } else {
+      hits += svmp::cspace::intersects(c.link, c.poses[j], c.board, Eigen::Isometry3d::Identity()).value_or(false);
+    }
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["hits"] = static_cast<double>(hits) / state.iterations();
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_CapsuleBoxDistance, fcl_then_plane, true);
 BENCHMARK_CAPTURE(BM_CapsuleBoxDistance, own_gjk, false);
+BENCHMARK_CAPTURE(BM_CapsuleBoxCollide, fcl, true);
+BENCHMARK_CAPTURE(BM_CapsuleBoxCollide, own_gjk, false);
 BENCHMARK_CAPTURE(BM_CollisionCheck, point2d, "point2d");
 BENCHMARK_CAPTURE(BM_CollisionCheck, planar5, "planar5");
 BENCHMARK_CAPTURE(BM_CollisionCheck, planar6, "planar6");
