@@ -87,44 +87,70 @@ DhArm::DhArm(DhArmSpec spec)
   }
 }
 
-void DhArm::linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const {
-  poses.resize(spec_.rows.size());
-  Eigen::Isometry3d t = spec_.base;
-  for (size_t i = 0; i < spec_.rows.size(); ++i) {
-    t = t * rowTransform(spec_.rows[i], q[i]);
-    poses[i] = t;
-  }
-}
+namespace {
 
-Eigen::Isometry3d DhArm::flangePose(const Eigen::Ref<const Eigen::VectorXd>& q) const {
-  Eigen::Isometry3d t = spec_.base;
-  for (size_t i = 0; i < spec_.rows.size(); ++i) t = t * rowTransform(spec_.rows[i], q[i]);
-  return t * rowTransform(spec_.flange, 0);
-}
+// A frame's rotation columns and origin in the world, advanced through DH rows in closed form: frame
+// i's origin moves by R (a, -sin(alpha) d, cos(alpha) d) and its rotation is R RotX(alpha) RotZ(theta),
+// written out column by column instead of composing 4x4 isometries (rowTransform), which cost most of
+// a collision check on the arms.
+struct DhFrame {
+  Eigen::Vector3d c0, c1, c2, p;
 
-// The closed-form product of the DH rows (the FK kernel evaluates it at every query): frame i's
-// origin moves by R (a, -sin(alpha) d, cos(alpha) d) and its rotation is R RotX(alpha) RotZ(theta),
-// written out column by column instead of composing 4x4 isometries.
-void DhArm::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Matrix3Xd& points) const {
-  points.resize(3, numControlPoints());
-  Eigen::Vector3d c0 = spec_.base.linear().col(0), c1 = spec_.base.linear().col(1),
-                  c2 = spec_.base.linear().col(2);
-  Eigen::Vector3d p = spec_.base.translation();
-  auto advance = [&](const DhRow& row, double ca, double sa, double theta) {
+  explicit DhFrame(const Eigen::Isometry3d& base)
+      : c0(base.linear().col(0)), c1(base.linear().col(1)), c2(base.linear().col(2)), p(base.translation()) {}
+
+  void advance(const DhRow& row, double ca, double sa, double theta) {
     p += row.a * c0 + (ca * row.d) * c2 - (sa * row.d) * c1;
     const double ct = std::cos(theta), st = std::sin(theta);
     const Eigen::Vector3d y = ca * c1 + sa * c2;  // RotX(alpha)'s y and z columns in the world
     c2 = ca * c2 - sa * c1;
     c1 = ct * y - st * c0;
     c0 = ct * c0 + st * y;
-  };
+  }
+
+  Eigen::Isometry3d pose() const {
+    Eigen::Isometry3d t;
+    t.linear().col(0) = c0;
+    t.linear().col(1) = c1;
+    t.linear().col(2) = c2;
+    t.translation() = p;
+    t.makeAffine();
+    return t;
+  }
+};
+
+}  // namespace
+
+void DhArm::linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const {
+  poses.resize(spec_.rows.size());
+  DhFrame frame(spec_.base);
+  for (size_t i = 0; i < spec_.rows.size(); ++i) {
+    frame.advance(spec_.rows[i], cos_alpha_[i], sin_alpha_[i], q[i] + spec_.rows[i].offset);
+    poses[i] = frame.pose();
+  }
+}
+
+Eigen::Isometry3d DhArm::flangePose(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  DhFrame frame(spec_.base);
+  for (size_t i = 0; i < spec_.rows.size(); ++i)
+    frame.advance(spec_.rows[i], cos_alpha_[i], sin_alpha_[i], q[i] + spec_.rows[i].offset);
+  frame.advance(spec_.flange, std::cos(spec_.flange.alpha), std::sin(spec_.flange.alpha), spec_.flange.offset);
+  return frame.pose();
+}
+
+// The closed-form product of the DH rows (DhFrame), as the FK kernel evaluates it at every query.
+void DhArm::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Matrix3Xd& points) const {
+  points.resize(3, numControlPoints());
+  DhFrame frame(spec_.base);
   size_t next = 0;
   for (size_t i = 0; i < spec_.rows.size(); ++i) {
-    advance(spec_.rows[i], cos_alpha_[i], sin_alpha_[i], q[i] + spec_.rows[i].offset);
-    if (next < moving_origins_.size() && moving_origins_[next] == static_cast<int>(i)) points.col(next++) = p;
+    frame.advance(spec_.rows[i], cos_alpha_[i], sin_alpha_[i], q[i] + spec_.rows[i].offset);
+    if (next < moving_origins_.size() && moving_origins_[next] == static_cast<int>(i)) points.col(next++) = frame.p;
   }
-  advance(spec_.flange, std::cos(spec_.flange.alpha), std::sin(spec_.flange.alpha), spec_.flange.offset);
-  auto inFlange = [&](const Eigen::Vector3d& v) { return Eigen::Vector3d(p + v.x() * c0 + v.y() * c1 + v.z() * c2); };
+  frame.advance(spec_.flange, std::cos(spec_.flange.alpha), std::sin(spec_.flange.alpha), spec_.flange.offset);
+  auto inFlange = [&](const Eigen::Vector3d& v) {
+    return Eigen::Vector3d(frame.p + v.x() * frame.c0 + v.y() * frame.c1 + v.z() * frame.c2);
+  };
   points.col(next++) = inFlange(spec_.tool_tip);
   for (const Eigen::Vector3d& v : tool_points_) points.col(next++) = inFlange(v);
 }

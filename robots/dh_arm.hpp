@@ -59,7 +59,7 @@ class DhArm final : public Robot {
  private:
   DhArmSpec spec_;
   std::vector<int> moving_origins_;  // frames whose origin is a distinct, moving joint origin
-  std::vector<double> cos_alpha_, sin_alpha_;  // per DH row, for the closed-form control points
+  std::vector<double> cos_alpha_, sin_alpha_;  // per DH row, for the closed-form kinematics (DhFrame)
   // Control points after the tip, in the flange frame: both ends of each tool box's longest axis. The
   // joint origins and the tip lie on the last joint's axis, so without them the FK kernel cannot see
   // the last joint turn the tool (a hand wider than it is deep).
