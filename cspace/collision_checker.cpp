@@ -228,16 +228,23 @@ double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) c
   distances_.fetch_add(1, std::memory_order_relaxed);
   Workspace& ws = workspace();
   placeRobot(ws, q);
+  // Each pair's distance from our GJK to within 1e-6 of it (from below), pairs whose bounding boxes
+  // are farther apart than the best so far skipped: FCL's distance overestimated by more than 1e-6 in
+  // 12% of capsule-box and 19% of box-box cases (certification_test).
   double best = std::numeric_limits<double>::infinity();
-  fcl::DistanceRequestd request;
-  for (auto& link : ws.links)
-    for (auto& part : link)
+  for (int i = 0; i < robot_->numLinks(); ++i)
+    for (size_t k = 0; k < ws.links[i].size(); ++k) {
+      const fcl::CollisionObjectd* part = ws.links[i][k].get();
       for (const auto& o : env_->obstacles()) {
-        if (o.is_virtual) continue;
-        fcl::DistanceResultd result;
-        const double d = fcl::distance(part.get(), ws.obstacles[o.id - 1].get(), request, result);
+        const fcl::CollisionObjectd* obj = ws.obstacles[o.id - 1].get();
+        if (o.is_virtual || !(part->getAABB().distance(obj->getAABB()) < best)) continue;
+        const auto& pa = part->getTransform();
+        const auto& pb = obj->getTransform();
+        const double d = distanceLowerBound(robot_->linkShapes(i)[k], pa, o.shape, pb,
+                                            pa.translation() - pb.translation(), 1e-6);
         best = std::min(best, std::max(0.0, d));
       }
+    }
   return best;
 }
 

@@ -38,8 +38,9 @@ class CollisionChecker final : public ValidityChecker {
     return checkImpl(q, true);
   }
   bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override;
-  // Minimum FCL distance, as FCL reports it (its GJK may overestimate; see freeDistance); counts
-  // one distance query.
+  // The smallest distance between the robot and the real obstacles (0 in contact), to within 1e-6
+  // of it from below (cspace/convex_distance.hpp; self-collision pairs not included); counts one
+  // distance query.
   double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const override;
   // A lower bound on the smallest distance at q between the robot's links and the real obstacles,
   // and between the non-adjacent link pairs kept for self-collision: how far any point of the robot
