@@ -124,10 +124,10 @@ void bindPlanning(py::module_& m) {
         return out;
       }, "list of (start, goal) arrays")
       .def("check", [](const Scenario& s, const py::object& q) { return s.checker->check(s.point(q, "q")); }, py::arg("q"),
-           "exact (FCL) check: 0 free, the lowest id of an obstacle hit, -1 joint limits, -2 self-collision")
+           "exact check (FCL primitives): 0 free, the lowest id of an obstacle hit, -1 joint limits, -2 self-collision")
       .def("is_valid", [](const Scenario& s, const py::object& q) { return s.checker->isValid(s.point(q, "q")); }, py::arg("q"))
       .def("clearance", [](const Scenario& s, const py::object& q) { return s.checker->clearance(s.point(q, "q")); },
-           py::arg("q"), "FCL distance of the robot to the nearest real obstacle")
+           py::arg("q"), "distance of the robot to the nearest real obstacle (0 in contact), exact to 1e-6")
       .def("distance", [](const Scenario& s, const py::object& a, const py::object& b) {
         return s.space.distance(s.point(a, "a"), s.point(b, "b"));
       }, py::arg("a"), py::arg("b"), "weighted joint metric (thesis eq. 4.3)")
