@@ -24,8 +24,8 @@
 #include "planners/path_simplifier.hpp"
 #include "planners/planner_registry.hpp"
 #include "planners/svpp_smoothing.hpp"
-#include "svm/solver_workspace.hpp"
 #include "planners/verify_repair.hpp"
+#include "svm/solver_workspace.hpp"
 
 namespace svmp::experiments {
 namespace {
