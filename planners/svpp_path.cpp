@@ -77,7 +77,8 @@ double fitCost(const Evaluator& v, const Eigen::Vector3d& p, const Eigen::Vector
   return cost;
 }
 
-Eigen::Vector3d fitPlane(const Evaluator& v, const Eigen::Vector3d& p, double radius) {
+// The local plane fit of Fig. 5 at p: the unit normal of the best plane.
+Eigen::Vector3d fitSurfacePlane(const Evaluator& v, const Eigen::Vector3d& p, double radius) {
   Eigen::Vector3d grad;
   v.exactDecisionAndGradient(p.data(), grad.data());
   Eigen::Vector3d normal =
@@ -173,11 +174,6 @@ FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorX
   return r;
 }
 
-Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vector3d& p,
-                                double radius) {
-  return fitPlane(Evaluator(model), p, radius);
-}
-
 FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorXd& start,
                              const Eigen::VectorXd& goal,
                              const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& target,
@@ -189,7 +185,7 @@ FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorX
   for (int step = 0; step < o.max_steps; ++step) {
     if (closeToGoal(r, goal, o)) return r;
     const Eigen::Vector3d p = r.path.back();
-    const Eigen::Vector3d normal = fitPlane(full, p, o.step);
+    const Eigen::Vector3d normal = fitSurfacePlane(full, p, o.step);
     Eigen::Vector3d direction = target(p) - p;
     direction -= direction.dot(normal) * normal;
     if (!(direction.norm() > 1e-12)) {  // the plane faces the target: no way along the surface

@@ -55,8 +55,4 @@ FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorX
                              const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& target,
                              const SurfaceFollowing& options);
 
-// The local plane fit of Fig. 5 at p: the unit normal of the best plane (exposed for tests).
-Eigen::Vector3d fitSurfacePlane(const svm::BinaryModel& model, const Eigen::Vector3d& p,
-                                double radius);
-
 }  // namespace svmp::planners
