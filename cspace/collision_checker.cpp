@@ -132,6 +132,23 @@ bool shapesCollide(fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::Colli
   return fcl::collide(a, b, request, result) > 0;
 }
 
+// A pair outside the broadphase: bounding boxes first, then the narrow phase.
+bool pairCollides(fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::CollisionObjectd* b,
+                  const robots::Shape& sb) {
+  return a->getAABB().overlap(b->getAABB()) && shapesCollide(a, sa, b, sb);
+}
+
+// A lower bound on the distance between two placed objects, 0 when they may touch: a separating
+// plane's, from a GJK run of our own (cspace/convex_distance.hpp) stopped within `rel_gap` of the
+// distance. FCL's distance is not asked: its GJK overestimates, so its value could only serve as a
+// first direction, and it cost more than the whole run of ours.
+double objectDistance(const fcl::CollisionObjectd* a, const robots::Shape& sa,
+                      const fcl::CollisionObjectd* b, const robots::Shape& sb, double rel_gap) {
+  const auto& pa = a->getTransform();
+  const auto& pb = b->getTransform();
+  return std::max(0.0, distanceLowerBound(sa, pa, sb, pb, pa.translation() - pb.translation(), rel_gap));
+}
+
 }  // namespace
 
 bool CollisionChecker::linksCollide(Workspace& ws, int a, int b) const {
@@ -139,9 +156,7 @@ bool CollisionChecker::linksCollide(Workspace& ws, int a, int b) const {
     for (size_t kb = 0; kb < ws.links[b].size(); ++kb) {
       fcl::CollisionObjectd* oa = ws.links[a][ka].get();
       fcl::CollisionObjectd* ob = ws.links[b][kb].get();
-      if (oa->getAABB().overlap(ob->getAABB()) &&
-          shapesCollide(oa, robot_->linkShapes(a)[ka], ob, robot_->linkShapes(b)[kb]))
-        return true;
+      if (pairCollides(oa, robot_->linkShapes(a)[ka], ob, robot_->linkShapes(b)[kb])) return true;
     }
   return false;
 }
@@ -191,7 +206,7 @@ int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool
         if (o.id >= lowest) break;
         if (o.is_virtual && !include_virtual) continue;
         fcl::CollisionObjectd* obj = ws.obstacles[o.id - 1].get();
-        if (part->getAABB().overlap(obj->getAABB()) && shapesCollide(part, shape, obj, o.shape)) lowest = o.id;
+        if (pairCollides(part, shape, obj, o.shape)) lowest = o.id;
       }
     }
   }
@@ -217,8 +232,7 @@ bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) 
   for (int i = 0; i < robot_->numLinks(); ++i)
     for (size_t k = 0; k < ws.links[i].size(); ++k) {
       fcl::CollisionObjectd* part = ws.links[i][k].get();
-      if (part->getAABB().overlap(obj->getAABB()) && shapesCollide(part, robot_->linkShapes(i)[k], obj, obstacle))
-        return true;
+      if (pairCollides(part, robot_->linkShapes(i)[k], obj, obstacle)) return true;
     }
   return false;
 }
@@ -238,31 +252,11 @@ double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) c
       for (const auto& o : env_->obstacles()) {
         const fcl::CollisionObjectd* obj = ws.obstacles[o.id - 1].get();
         if (o.is_virtual || !(part->getAABB().distance(obj->getAABB()) < best)) continue;
-        const auto& pa = part->getTransform();
-        const auto& pb = obj->getTransform();
-        const double d = distanceLowerBound(robot_->linkShapes(i)[k], pa, o.shape, pb,
-                                            pa.translation() - pb.translation(), 1e-6);
-        best = std::min(best, std::max(0.0, d));
+        best = std::min(best, objectDistance(part, robot_->linkShapes(i)[k], obj, o.shape, 1e-6));
       }
     }
   return best;
 }
-
-namespace {
-
-// A lower bound on the distance between two placed objects, 0 when they may touch: a separating
-// plane's, from a GJK run of our own (cspace/convex_distance.hpp) stopped within 1e-3 of the distance
-// (a looser bound only costs the validator a few more bisections). FCL's distance is not asked: its
-// GJK overestimates, so its value could only serve as a first direction, and it cost more than the
-// whole run of ours.
-double objectDistance(fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::CollisionObjectd* b,
-                      const robots::Shape& sb) {
-  const auto& pa = a->getTransform();
-  const auto& pb = b->getTransform();
-  return std::max(0.0, distanceLowerBound(sa, pa, sb, pb, pa.translation() - pb.translation(), 1e-3));
-}
-
-}  // namespace
 
 bool CollisionChecker::freeDistances(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::VectorXd& cap,
                                      Eigen::VectorXd& d) const {
@@ -282,7 +276,8 @@ bool CollisionChecker::freeDistances(const Eigen::Ref<const Eigen::VectorXd>& q,
   auto touches = [&](int link, fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::CollisionObjectd* b,
                      const robots::Shape& sb) {
     double& best = d[link];
-    if (a->getAABB().distance(b->getAABB()) < best) best = std::min(best, objectDistance(a, sa, b, sb));
+    // Within 1e-3 of the distance: a looser bound only costs the validator a few more bisections.
+    if (a->getAABB().distance(b->getAABB()) < best) best = std::min(best, objectDistance(a, sa, b, sb, 1e-3));
     return best == 0;
   };
   auto anyContact = [&] {
