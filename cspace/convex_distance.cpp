@@ -16,6 +16,12 @@ double sign(double x) { return x < 0 ? -1.0 : 1.0; }
 struct Simplex {
   std::array<Eigen::Vector3d, 4> p;
   int n = 0;
+  // Whether w is already a point (to rounding): GJK has stalled, no new support point to add.
+  bool has(const Eigen::Vector3d& w) const {
+    for (int i = 0; i < n; ++i)
+      if ((p[i] - w).squaredNorm() <= 1e-28 * (1 + w.squaredNorm())) return true;
+    return false;
+  }
 };
 
 // The point of the affine hull of the points idx[0..K] closest to the origin, with its barycentric
@@ -171,10 +177,7 @@ double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d&
     // |v| bounds the cores' distance from above once v is a point of the simplex (the hint need not
     // be); within the margin the shapes may touch, and the bound is <= 0 whatever follows.
     if (s.n > 0 && (norm - best <= rel_gap * (norm - margin) || norm <= margin)) break;
-    bool known = false;
-    for (int i = 0; i < s.n; ++i)
-      known = known || (s.p[i] - w).squaredNorm() <= 1e-28 * (1 + w.squaredNorm());
-    if (known || s.n == 4) break;  // no progress possible (numerical stall)
+    if (s.has(w) || s.n == 4) break;  // no progress possible (numerical stall)
     s.p[s.n++] = w;
     v = closestToOrigin(s);
     // The origin in the hull (or on it): the cores overlap; best is then <= 0 as well.
@@ -195,8 +198,7 @@ std::optional<bool> intersects(const robots::Shape& a_shape, const Eigen::Isomet
     const Eigen::Vector3d w = supportPoint(a, pa, -v) - supportPoint(b, pb, v);
     // A plane separating the cores by more than the radii: apart.
     if (v.dot(w) > margin * v.norm()) return false;
-    for (int i = 0; i < s.n; ++i)
-      if ((s.p[i] - w).squaredNorm() <= 1e-28 * (1 + w.squaredNorm())) return std::nullopt;  // stalled
+    if (s.has(w)) return std::nullopt;  // stalled undecided
     s.p[s.n++] = w;
     v = closestToOrigin(s);
     // A point of the cores' difference within the radii of the origin (or the origin enclosed):
