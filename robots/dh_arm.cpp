@@ -10,14 +10,35 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Eigen::Isometry3d rowTransform(const DhRow& row, double theta) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.rotate(Eigen::AngleAxisd(row.alpha, Eigen::Vector3d::UnitX()));
-  t.translate(Eigen::Vector3d(row.a, 0, 0));
-  t.rotate(Eigen::AngleAxisd(theta + row.offset, Eigen::Vector3d::UnitZ()));
-  t.translate(Eigen::Vector3d(0, 0, row.d));
-  return t;
-}
+// A frame's rotation columns and origin in the world, advanced through DH rows in closed form: frame
+// i's origin moves by R (a, -sin(alpha) d, cos(alpha) d) and its rotation is R RotX(alpha) RotZ(theta),
+// written out column by column: composing Eigen isometries per row cost most of a collision check on
+// the arms.
+struct DhFrame {
+  Eigen::Vector3d c0, c1, c2, p;
+
+  explicit DhFrame(const Eigen::Isometry3d& base)
+      : c0(base.linear().col(0)), c1(base.linear().col(1)), c2(base.linear().col(2)), p(base.translation()) {}
+
+  void advance(const DhRow& row, double ca, double sa, double theta) {
+    p += row.a * c0 + (ca * row.d) * c2 - (sa * row.d) * c1;
+    const double ct = std::cos(theta), st = std::sin(theta);
+    const Eigen::Vector3d y = ca * c1 + sa * c2;  // RotX(alpha)'s y and z columns in the world
+    c2 = ca * c2 - sa * c1;
+    c1 = ct * y - st * c0;
+    c0 = ct * c0 + st * y;
+  }
+
+  Eigen::Isometry3d pose() const {
+    Eigen::Isometry3d t;
+    t.linear().col(0) = c0;
+    t.linear().col(1) = c1;
+    t.linear().col(2) = c2;
+    t.translation() = p;
+    t.makeAffine();
+    return t;
+  }
+};
 
 bool near(double a, double b) { return std::abs(a - b) < 1e-12; }
 
@@ -55,7 +76,14 @@ DhArm::DhArm(DhArmSpec spec)
     const DhRow& next = i + 1 < n ? spec_.rows[i + 1] : spec_.flange;
     addSegmentCapsules(next, spec_.link_radius[i], link_shapes_[i]);
   }
-  const Eigen::Isometry3d to_flange = rowTransform(spec_.flange, 0);
+  for (size_t i = 0; i <= n; ++i) {
+    const DhRow& row = i < n ? spec_.rows[i] : spec_.flange;
+    cos_alpha_.push_back(std::cos(row.alpha));
+    sin_alpha_.push_back(std::sin(row.alpha));
+  }
+  DhFrame flange(Eigen::Isometry3d::Identity());
+  flange.advance(spec_.flange, cos_alpha_[n], sin_alpha_[n], spec_.flange.offset);
+  const Eigen::Isometry3d to_flange = flange.pose();
   for (Shape shape : spec_.tool) {
     const std::string err = shape.validate();
     if (!err.empty()) throw std::invalid_argument(name_ + ": tool shape: " + err);
@@ -81,45 +109,7 @@ DhArm::DhArm(DhArmSpec spec)
       spec_.flange.a == 0 && spec_.flange.d == 0 && spec_.tool_tip.isZero();
   if (tip_is_last_origin && !moving_origins_.empty() && moving_origins_.back() == static_cast<int>(n) - 1)
     moving_origins_.pop_back();
-  for (const DhRow& row : spec_.rows) {
-    cos_alpha_.push_back(std::cos(row.alpha));
-    sin_alpha_.push_back(std::sin(row.alpha));
-  }
 }
-
-namespace {
-
-// A frame's rotation columns and origin in the world, advanced through DH rows in closed form: frame
-// i's origin moves by R (a, -sin(alpha) d, cos(alpha) d) and its rotation is R RotX(alpha) RotZ(theta),
-// written out column by column instead of composing 4x4 isometries (rowTransform), which cost most of
-// a collision check on the arms.
-struct DhFrame {
-  Eigen::Vector3d c0, c1, c2, p;
-
-  explicit DhFrame(const Eigen::Isometry3d& base)
-      : c0(base.linear().col(0)), c1(base.linear().col(1)), c2(base.linear().col(2)), p(base.translation()) {}
-
-  void advance(const DhRow& row, double ca, double sa, double theta) {
-    p += row.a * c0 + (ca * row.d) * c2 - (sa * row.d) * c1;
-    const double ct = std::cos(theta), st = std::sin(theta);
-    const Eigen::Vector3d y = ca * c1 + sa * c2;  // RotX(alpha)'s y and z columns in the world
-    c2 = ca * c2 - sa * c1;
-    c1 = ct * y - st * c0;
-    c0 = ct * c0 + st * y;
-  }
-
-  Eigen::Isometry3d pose() const {
-    Eigen::Isometry3d t;
-    t.linear().col(0) = c0;
-    t.linear().col(1) = c1;
-    t.linear().col(2) = c2;
-    t.translation() = p;
-    t.makeAffine();
-    return t;
-  }
-};
-
-}  // namespace
 
 void DhArm::linkPoses(const Eigen::Ref<const Eigen::VectorXd>& q, Poses& poses) const {
   poses.resize(spec_.rows.size());
@@ -134,7 +124,8 @@ Eigen::Isometry3d DhArm::flangePose(const Eigen::Ref<const Eigen::VectorXd>& q) 
   DhFrame frame(spec_.base);
   for (size_t i = 0; i < spec_.rows.size(); ++i)
     frame.advance(spec_.rows[i], cos_alpha_[i], sin_alpha_[i], q[i] + spec_.rows[i].offset);
-  frame.advance(spec_.flange, std::cos(spec_.flange.alpha), std::sin(spec_.flange.alpha), spec_.flange.offset);
+  const size_t n = spec_.rows.size();
+  frame.advance(spec_.flange, cos_alpha_[n], sin_alpha_[n], spec_.flange.offset);
   return frame.pose();
 }
 
@@ -147,7 +138,8 @@ void DhArm::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Mat
     frame.advance(spec_.rows[i], cos_alpha_[i], sin_alpha_[i], q[i] + spec_.rows[i].offset);
     if (next < moving_origins_.size() && moving_origins_[next] == static_cast<int>(i)) points.col(next++) = frame.p;
   }
-  frame.advance(spec_.flange, std::cos(spec_.flange.alpha), std::sin(spec_.flange.alpha), spec_.flange.offset);
+  const size_t n = spec_.rows.size();
+  frame.advance(spec_.flange, cos_alpha_[n], sin_alpha_[n], spec_.flange.offset);
   auto inFlange = [&](const Eigen::Vector3d& v) {
     return Eigen::Vector3d(frame.p + v.x() * frame.c0 + v.y() * frame.c1 + v.z() * frame.c2);
   };
@@ -178,11 +170,12 @@ Eigen::Vector3d forearmAxis(const DhArmSpec& s) {
 Eigen::Vector3d DhArm::pointOnLinkFirstThree(const Eigen::Ref<const Eigen::VectorXd>& q, int link,
                                              double s) const {
   if (link < 1 || link > 3) throw std::invalid_argument(name_ + ": IK link must be 1, 2 or 3");
-  Eigen::Isometry3d t = spec_.base;
-  for (int i = 0; i < link; ++i) t = t * rowTransform(spec_.rows[i], q[i]);
+  DhFrame frame(spec_.base);
+  for (int i = 0; i < link; ++i)
+    frame.advance(spec_.rows[i], cos_alpha_[i], sin_alpha_[i], q[i] + spec_.rows[i].offset);
   const Eigen::Vector3d local = link == 3 ? Eigen::Vector3d(s * forearmAxis(spec_))
                                           : Eigen::Vector3d(s, 0, 0);
-  return t * local;
+  return frame.pose() * local;
 }
 
 std::vector<Eigen::VectorXd> DhArm::solvePointOnLinkFirstThree(

@@ -48,7 +48,7 @@ class DhArm final : public Robot {
   // thesis' simplified model of ch. 2.3: configurations that put the point at distance s along link
   // `link` (1: shoulder offset a1, 2: upper arm a2, 3: forearm d4; 1-based like the table) on target.
   // Shoulder left/right and elbow up/down give up to four solutions; joints beyond 3 copy `seed`.
-  // Throws std::logic_error when the table does not have that structure.
+  // Throws std::logic_error when the table does not have that structure .
   std::vector<Eigen::VectorXd> solvePointOnLinkFirstThree(
       int link, double s, const Eigen::Vector3d& target,
       const Eigen::Ref<const Eigen::VectorXd>& seed) const;
@@ -59,7 +59,7 @@ class DhArm final : public Robot {
  private:
   DhArmSpec spec_;
   std::vector<int> moving_origins_;  // frames whose origin is a distinct, moving joint origin
-  std::vector<double> cos_alpha_, sin_alpha_;  // per DH row, for the closed-form kinematics (DhFrame)
+  std::vector<double> cos_alpha_, sin_alpha_;  // per DH row, then the flange (DhFrame in dh_arm.cpp)
   // Control points after the tip, in the flange frame: both ends of each tool box's longest axis. The
   // joint origins and the tip lie on the last joint's axis, so without them the FK kernel cannot see
   // the last joint turn the tool (a hand wider than it is deep).
