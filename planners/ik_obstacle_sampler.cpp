@@ -130,7 +130,8 @@ IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
   const robots::Robot& robot = checker.robot();
   const auto* planar = dynamic_cast<const robots::PlanarArm*>(&robot);
   const auto* dh = dynamic_cast<const robots::DhArm*>(&robot);
-  if (!planar && !dh)
+  // A DH arm other than the CRS-F3's elbow structure (the Panda) is bad input here, not a logic error.
+  if (!planar && !(dh && dh->hasElbowStructure()))
     throw std::invalid_argument("IK obstacle sampling needs a planar arm or the CRS-F3 (robot '" +
                                 robot.name() + "' has no closed-form IK here)");
   cspace::Rng rng(seed);

@@ -149,16 +149,6 @@ void DhArm::controlPoints(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Mat
 
 namespace {
 
-void requireElbowStructure(const DhArmSpec& s) {
-  const auto& r = s.rows;
-  const bool ok = r.size() >= 3 && near(r[0].alpha, 0) && near(r[0].a, 0) &&
-                  near(std::abs(r[1].alpha), kPi / 2) && near(r[2].alpha, 0) && near(r[1].d, 0) &&
-                  near(r[2].d, 0);
-  const DhRow& fourth = r.size() > 3 ? r[3] : s.flange;
-  if (!ok || !near(fourth.a, 0) || !near(std::abs(fourth.alpha), kPi / 2))
-    throw std::logic_error(s.name + ": closed-form IK needs the CRS-F3 elbow structure");
-}
-
 // Direction of the forearm (towards the wrist centre) in frame 3.
 Eigen::Vector3d forearmAxis(const DhArmSpec& s) {
   const DhRow& fourth = s.rows.size() > 3 ? s.rows[3] : s.flange;
@@ -166,6 +156,15 @@ Eigen::Vector3d forearmAxis(const DhArmSpec& s) {
 }
 
 }  // namespace
+
+bool DhArm::hasElbowStructure() const {
+  const auto& r = spec_.rows;
+  const bool ok = r.size() >= 3 && near(r[0].alpha, 0) && near(r[0].a, 0) &&
+                  near(std::abs(r[1].alpha), kPi / 2) && near(r[2].alpha, 0) && near(r[1].d, 0) &&
+                  near(r[2].d, 0);
+  const DhRow& fourth = r.size() > 3 ? r[3] : spec_.flange;
+  return ok && near(fourth.a, 0) && near(std::abs(fourth.alpha), kPi / 2);
+}
 
 Eigen::Vector3d DhArm::pointOnLinkFirstThree(const Eigen::Ref<const Eigen::VectorXd>& q, int link,
                                              double s) const {
@@ -181,7 +180,8 @@ Eigen::Vector3d DhArm::pointOnLinkFirstThree(const Eigen::Ref<const Eigen::Vecto
 std::vector<Eigen::VectorXd> DhArm::solvePointOnLinkFirstThree(
     int link, double s, const Eigen::Vector3d& target,
     const Eigen::Ref<const Eigen::VectorXd>& seed) const {
-  requireElbowStructure(spec_);
+  if (!hasElbowStructure())
+    throw std::logic_error(name_ + ": closed-form IK needs the CRS-F3 elbow structure");
   checkConfiguration(seed, "DH IK seed");
   if (link < 1 || link > 3) throw std::invalid_argument(name_ + ": IK link must be 1, 2 or 3");
   const auto& r = spec_.rows;

@@ -48,7 +48,8 @@ class DhArm final : public Robot {
   // thesis' simplified model of ch. 2.3: configurations that put the point at distance s along link
   // `link` (1: shoulder offset a1, 2: upper arm a2, 3: forearm d4; 1-based like the table) on target.
   // Shoulder left/right and elbow up/down give up to four solutions; joints beyond 3 copy `seed`.
-  // Throws std::logic_error when the table does not have that structure .
+  // Throws std::logic_error when the table does not have that structure (hasElbowStructure).
+  bool hasElbowStructure() const;
   std::vector<Eigen::VectorXd> solvePointOnLinkFirstThree(
       int link, double s, const Eigen::Vector3d& target,
       const Eigen::Ref<const Eigen::VectorXd>& seed) const;

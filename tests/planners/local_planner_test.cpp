@@ -64,6 +64,15 @@ TEST(IkObstacleSampler, CrsF3SamplesTouchTheirObstacle) {
   expectSamplesTouchTheirObstacle("thesis_fig2_10.yaml", 1e-6);
 }
 
+// A robot without closed-form IK here (the Panda, a DH arm without the CRS-F3's elbow) is the
+// query's bad input, reported as invalid_input, not an uncaught logic error.
+TEST(LocalPlanner, PandaIsInvalidInput) {
+  auto w = makeWorld(readScenario("panda_shelf.yaml"));
+  const PlanResult r = w->planner("local")->solve(w->query(), 1);
+  EXPECT_EQ(r.status, PlanStatus::kInvalidInput) << r.message;
+  EXPECT_NE(r.message.find("no closed-form IK"), std::string::npos) << r.message;
+}
+
 TEST(HyperplaneLabelling, BalancedKeepsBothClassesOnRandomSets) {
   std::mt19937_64 rng(11);
   std::normal_distribution<double> normal(0, 1);
