@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "svm/local_one_vs_rest.hpp"
 #include "svm/one_vs_rest.hpp"
 
 namespace svmp::planners {
@@ -57,12 +58,22 @@ RiskFunction::RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int
 RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations, const std::vector<int>& labels,
                                           double sigma, double C, const std::map<int, double>& class_weight,
                                           const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
-                                          bool truncated, int threads, const robots::Robot* fk) {
+                                          bool truncated, int threads, const robots::Robot* fk,
+                                          OvrTraining training) {
   const svm::Kernel rbf = svm::Kernel::rbfFromSigma(sigma);
   const Eigen::MatrixXd features =
       fk ? controlPointFeatures(*fk, configurations) : Eigen::MatrixXd(scale.asDiagonal() * configurations);
-  svm::OneVsRestModel ovr = svm::trainOneVsRest(features, labels, fk ? svm::Kernel::blockSum(rbf, 3) : rbf, C,
-                                                class_weight, solver, threads);
+  if (fk || training == OvrTraining::kFull) {
+    svm::OneVsRestModel ovr = svm::trainOneVsRest(features, labels, fk ? svm::Kernel::blockSum(rbf, 3) : rbf, C,
+                                                  class_weight, solver, threads);
+    return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated, fk);
+  }
+  const std::vector<int> classes = svm::oneVsRestClasses(features, labels, C, class_weight, threads, "trainOneVsRest");
+  const auto hoods = svm::classNeighbourhoods(features, labels, classes, rbf);
+  const bool local = training == OvrTraining::kNeighbourhood ||
+                     svm::neighbourhoodShare(hoods, features.cols()) < svm::kNeighbourhoodShareLimit;
+  svm::OneVsRestModel ovr = local ? svm::trainOneVsRestLocal(features, labels, rbf, C, class_weight, solver, threads, &hoods)
+                                  : svm::trainOneVsRest(features, labels, rbf, C, class_weight, solver, threads);
   return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated, fk);
 }
 

@@ -48,6 +48,12 @@ struct DescentResult {
   DescentStatus status = DescentStatus::kIterationLimit;
 };
 
+// How one-versus-rest trains: the thesis' C-SVC on every sample (kFull), each class on its
+// neighbourhood with a fixed bias (kNeighbourhood, svm/local_one_vs_rest.hpp), or the latter where
+// the neighbourhoods are small enough to pay (kAuto: svm::neighbourhoodShare below its limit). The
+// FK kernel always trains kFull.
+enum class OvrTraining { kFull, kNeighbourhood, kAuto };
+
 class RiskFunction {
  public:
   // `fk`: null for models on scaled joints; else the robot whose control points the models take.
@@ -60,7 +66,8 @@ class RiskFunction {
   static RiskFunction trainOneVsRest(const Eigen::MatrixXd& configurations, const std::vector<int>& labels,
                                      double sigma, double C, const std::map<int, double>& class_weight,
                                      const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
-                                     bool truncated, int threads, const robots::Robot* fk = nullptr);
+                                     bool truncated, int threads, const robots::Robot* fk = nullptr,
+                                     OvrTraining training = OvrTraining::kFull);
   // `workspace`: kept by a caller that trains again and again, so that each solve reuses the last
   // one's cache memory instead of faulting in fresh pages (svm/solver_workspace.hpp).
   static RiskFunction trainBinary(const Eigen::MatrixXd& configurations, const Eigen::VectorXd& y,

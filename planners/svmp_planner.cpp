@@ -43,6 +43,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
   o.kernel = params.getString("kernel", o.kernel, {"rbf", "fk"});
   o.classes = params.getString("classes", o.classes, {"auto", "obstacle", "colour"});
+  o.training = params.getString("training", o.training, {"auto", "full", "neighbourhood"});
   o.fk_sigma = params.getDouble("fk_sigma", o.fk_sigma, -1, 1e6);
   return o;
 }
@@ -61,6 +62,8 @@ std::string SvmpOptions::validate() const {
   if (kernel != "rbf" && kernel != "fk") return "kernel must be rbf or fk, got " + kernel;
   if (classes != "auto" && classes != "obstacle" && classes != "colour")
     return "classes must be auto, obstacle or colour, got " + classes;
+  if (training != "auto" && training != "full" && training != "neighbourhood")
+    return "training must be auto, full or neighbourhood, got " + training;
   if (!std::isfinite(fk_sigma)) return "fk_sigma must be finite";
   if (!(interior_fraction >= 0 && interior_fraction <= 1))
     return "interior_fraction must be in [0, 1], got " + std::to_string(interior_fraction);
@@ -200,7 +203,10 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   risk_.emplace(RiskFunction::trainOneVsRest(points, classes, fk ? fk_sigma : options_.sigma,
                                              options_.C, class_weights, solver, context_.space.metricScale(),
                                              options_.truncated, context_.threads,
-                                             fk ? &robot : nullptr));
+                                             fk ? &robot : nullptr,
+                                             options_.training == "full"            ? OvrTraining::kFull
+                                             : options_.training == "neighbourhood" ? OvrTraining::kNeighbourhood
+                                                                                    : OvrTraining::kAuto));
   times.training_ms += msSince(t0);
   return "";
 }

@@ -86,6 +86,11 @@ struct SvmpOptions {
   // "colour" (obstacles whose samples come within 3 sigma share a model only if not adjacent,
   // planners/class_colouring.hpp), "auto" (colour above 8 classes, so the thesis' cases keep theirs).
   std::string classes = "auto";
+  // One-versus-rest training: "full" (the thesis' C-SVC on every sample, bias free),
+  // "neighbourhood" (each class on its samples and those within the kernel's truncation radius, bias
+  // fixed at -1: svm/local_one_vs_rest.hpp) or "auto" (neighbourhoods where they are small enough to
+  // pay: planners/risk_function.hpp). The FK kernel always trains "full".
+  std::string training = "auto";
 
   // Reads every field from `params` under its own name, with its bounds; absent keys keep the
   // defaults above (the one place they are written). Throws cspace::ScenarioError.

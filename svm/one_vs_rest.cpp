@@ -26,6 +26,36 @@ void oneVsRestProblem(const std::vector<int>& labels, int positive_class, double
   }
 }
 
+std::vector<int> oneVsRestClasses(const Eigen::MatrixXd& X, const std::vector<int>& labels, double C,
+                                  const std::map<int, double>& class_weight, int threads, const char* who) {
+  std::ostringstream msg;
+  msg << who << ": ";
+  if (static_cast<Eigen::Index>(labels.size()) != X.cols()) {
+    msg << labels.size() << " labels for " << X.cols() << " samples";
+    throw std::invalid_argument(msg.str());
+  }
+  if (!(C > 0.0) || !std::isfinite(C)) {
+    msg << "C must be positive and finite, got " << C;
+    throw std::invalid_argument(msg.str());
+  }
+  for (const auto& [label, w] : class_weight) {
+    if (!(w > 0.0) || !std::isfinite(w)) {
+      msg << "weight of class " << label << " must be positive, got " << w;
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  if (threads < 1) {
+    msg << "threads must be >= 1";
+    throw std::invalid_argument(msg.str());
+  }
+  const std::set<int> distinct(labels.begin(), labels.end());
+  if (distinct.size() < 2) {
+    msg << "need at least 2 classes, got " << distinct.size();
+    throw std::invalid_argument(msg.str());
+  }
+  return {distinct.begin(), distinct.end()};
+}
+
 namespace {
 
 // Whether the problems after the first share their kernel columns, solving without shrinking
@@ -58,30 +88,9 @@ OneVsRestModel trainOneVsRest(const Eigen::MatrixXd& X, const std::vector<int>& 
                               const Kernel& kernel, double C,
                               const std::map<int, double>& class_weight, const SolverOptions& opt,
                               int threads) {
-  std::ostringstream msg;
-  if (static_cast<Eigen::Index>(labels.size()) != X.cols()) {
-    msg << "trainOneVsRest: " << labels.size() << " labels for " << X.cols() << " samples";
-    throw std::invalid_argument(msg.str());
-  }
-  if (!(C > 0.0) || !std::isfinite(C)) {
-    msg << "trainOneVsRest: C must be positive and finite, got " << C;
-    throw std::invalid_argument(msg.str());
-  }
-  for (const auto& [label, w] : class_weight) {
-    if (!(w > 0.0) || !std::isfinite(w)) {
-      msg << "trainOneVsRest: weight of class " << label << " must be positive, got " << w;
-      throw std::invalid_argument(msg.str());
-    }
-  }
-  if (threads < 1) throw std::invalid_argument("trainOneVsRest: threads must be >= 1");
-  const std::set<int> distinct(labels.begin(), labels.end());
-  if (distinct.size() < 2) {
-    msg << "trainOneVsRest: need at least 2 classes, got " << distinct.size();
-    throw std::invalid_argument(msg.str());
-  }
-
+  const std::vector<int> classes = oneVsRestClasses(X, labels, C, class_weight, threads, "trainOneVsRest");
   OneVsRestModel out;
-  out.classes.assign(distinct.begin(), distinct.end());
+  out.classes = classes;
   const int k = static_cast<int>(out.classes.size());
   out.models.resize(k);
   out.solutions.resize(k);

@@ -41,6 +41,11 @@ OneVsRestModel trainOneVsRest(const Eigen::MatrixXd& X, const std::vector<int>& 
                               const std::map<int, double>& class_weight, const SolverOptions& opt,
                               int threads);
 
+// The distinct labels, ascending, after checking the arguments both trainings share (throws
+// std::invalid_argument naming `who`).
+std::vector<int> oneVsRestClasses(const Eigen::MatrixXd& X, const std::vector<int>& labels, double C,
+                                  const std::map<int, double>& class_weight, int threads, const char* who);
+
 // Binary labels (+1 for `positive_class`, -1 otherwise) and per-sample C of one OvR problem.
 void oneVsRestProblem(const std::vector<int>& labels, int positive_class, double C,
                       const std::map<int, double>& class_weight, Eigen::VectorXd& y,

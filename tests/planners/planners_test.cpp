@@ -310,6 +310,31 @@ TEST(NarrowPassage, SvmpTrainsOnAShareOfTheInterior) {
   }
 }
 
+// Each class trained on its neighbourhood with the bias fixed (svm/local_one_vs_rest.hpp): the
+// far negatives are no longer support vectors, the same passage is found; an unknown mode names the
+// field.
+TEST(NarrowPassage, SvmpTrainsEachClassOnItsNeighbourhood) {
+  const std::string params = "  svmp: {sigma: 0.04, C: 100, step: 0.05, samples_per_tree: 300, k: 10, training: ";
+  auto full = makeWorld(gapScenario(0.02, params + "full}\n"));
+  auto local = makeWorld(gapScenario(0.02, params + "neighbourhood}\n"));
+  local->certify();
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const PlanResult a = full->planner("svmp")->solve(full->query(), seed);
+    const PlanResult b = local->planner("svmp")->solve(local->query(), seed);
+    ASSERT_TRUE(a.solved()) << a.message;
+    ASSERT_TRUE(b.solved()) << b.message;
+    EXPECT_TRUE(b.certified);
+    EXPECT_LT(b.support_vectors, a.support_vectors);
+    EXPECT_TRUE(pathIsValid(*local, b.path, local->scenario.resolution / 4));
+  }
+  try {
+    makeWorld(gapScenario(0.02, params + "local}\n"))->planner("svmp");
+    FAIL() << "training: local accepted";
+  } catch (const cspace::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("training"), std::string::npos) << e.what();
+  }
+}
+
 // A gap of usable width 0.001, twenty times narrower than sigma and the duplicate radius: the SVM
 // boundary strays from the gap's centre at its mouths, so straight edges out of the gap clip a
 // corner. Repair bridges the disconnection along the boundary (tangent steps, centred in the gap)

@@ -1,0 +1,175 @@
+#include "svm/local_one_vs_rest.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <nanoflann.hpp>
+#include <stdexcept>
+
+#include "svm/column_cloud.hpp"
+#include "svm/simd_loops.hpp"
+
+namespace svmp::svm {
+namespace {
+
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, ColumnCloud>, ColumnCloud,
+                                                   -1, size_t>;
+
+// Radius-search result set that stamps every sample it meets (no list kept).
+struct Stamp {
+  double radius;  // squared
+  std::vector<int>& stamp;
+  int own;
+  size_t size() const { return 0; }
+  bool full() const { return true; }
+  double worstDist() const { return radius; }
+  bool addPoint(double, size_t j) {
+    stamp[j] = own;
+    return true;
+  }
+};
+
+// Greedy coordinate descent on min 1/2 a'Qa - p'a, 0 <= a <= C, Q_ij = y_i y_j K_ij with the kernel
+// truncated below exp(-5); one sample per column of `samples`.
+SolverResult solveFixedBias(const Eigen::MatrixXd& samples, const Eigen::VectorXd& y, const Eigen::VectorXd& C,
+                            double gamma, double bias, const SolverOptions& opt) {
+  const int m = static_cast<int>(y.size()), d = static_cast<int>(samples.rows());
+  // Row-major copy: rbfColumn reads coordinate c of sample t at X[c * m + t].
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> X = samples;
+  const float cut = static_cast<float>(std::exp(-5.0));
+  SolverResult r;
+  r.alpha = Eigen::VectorXd::Zero(m);
+  r.bias = bias;
+  const Eigen::VectorXd p = (1.0 - bias * y.array()).matrix();
+  // Each coordinate appears twice, as the vectorised SMO loops (svm/simd_loops.hpp) see it: entry t
+  // holds G_t, entry m + t holds -G_t, and up[] opens entry t while a_t may grow (a_t < C_t) and
+  // entry m + t while it may shrink (a_t > 0). Then max_t up[t] - Y[t] is the largest KKT violation,
+  // and a column holding y_t K_ti and then its negation updates both halves in one pass.
+  const int n2 = 2 * m;
+  constexpr double kClosed = -std::numeric_limits<double>::infinity();
+  std::vector<double> Y(n2), up(n2);
+  for (int t = 0; t < m; ++t) {
+    Y[t] = -p[t], Y[m + t] = p[t];
+    up[t] = C[t] > 0 ? 0.0 : kClosed, up[m + t] = kClosed;
+  }
+  std::vector<std::vector<float>> columns(m);
+  std::vector<double> z(d);
+  auto column = [&](int i) -> const float* {
+    std::vector<float>& k = columns[i];
+    if (k.empty()) {
+      k.resize(n2);
+      for (int c = 0; c < d; ++c) z[c] = X(c, i);
+      loops::rbfColumn(X.data(), m, d, z.data(), -gamma, m, k.data());
+      for (int t = 0; t < m; ++t) {
+        k[t] = k[t] < cut ? 0.0f : static_cast<float>(y[t]) * k[t];  // truncated below exp(-5)
+        k[m + t] = -k[t];
+      }
+      ++r.cache_misses;
+      r.kernel_entries += m;
+    } else {
+      ++r.cache_hits;
+    }
+    return k.data();
+  };
+  loops::ArgMax worst = loops::selectI(n2, up.data(), Y.data());
+  while (worst.index >= 0 && worst.value > opt.eps) {
+    if (r.iterations >= opt.max_iterations) {
+      r.status = SolverStatus::kIterationLimit;
+      break;
+    }
+    ++r.iterations;
+    const int i = worst.index % m;
+    const double next = std::clamp(r.alpha[i] - Y[i], 0.0, C[i]);  // Q_ii = 1
+    const double w = (next - r.alpha[i]) * y[i];
+    r.alpha[i] = next;
+    up[i] = next < C[i] ? 0.0 : kClosed;
+    up[m + i] = next > 0 ? 0.0 : kClosed;
+    const float* k = column(i);
+    worst = loops::updateGradientSelectI(n2, Y.data(), k, k, w, 0.0, up.data());
+  }
+  r.violation = worst.index >= 0 ? std::max(0.0, worst.value) : 0.0;
+  r.gradient = Eigen::Map<const Eigen::VectorXd>(Y.data(), m);  // G = Qa - p
+  r.objective = 0.5 * r.alpha.dot(r.gradient + p) - p.dot(r.alpha);
+  for (int i = 0; i < m; ++i) {
+    r.support_vectors += r.alpha[i] > 0;
+    r.bounded_support_vectors += r.alpha[i] > 0 && r.alpha[i] >= C[i];
+  }
+  r.mean_active = m;
+  return r;
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> classNeighbourhoods(const Eigen::MatrixXd& X, const std::vector<int>& labels,
+                                                  const std::vector<int>& classes, const Kernel& kernel) {
+  if (!kernel.isPlainRbf()) throw std::invalid_argument("classNeighbourhoods: needs the plain RBF kernel");
+  const ColumnCloud cloud{&X};
+  const KdTree tree(static_cast<int>(X.rows()), cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  const double radius2 = 5.0 / kernel.gamma;  // exp(-gamma d^2) >= exp(-5)
+  const int k = static_cast<int>(classes.size());
+  std::vector<std::vector<int>> out(k);
+  std::vector<int> stamp(X.cols(), -1);
+  for (int c = 0; c < k; ++c) {
+    for (Eigen::Index i = 0; i < X.cols(); ++i) {
+      if (labels[i] != classes[c]) continue;
+      Stamp found{radius2, stamp, c};
+      tree.findNeighbors(found, X.col(i).data(), nanoflann::SearchParams(32, 0.0f, false));
+    }
+    for (Eigen::Index i = 0; i < X.cols(); ++i)
+      if (stamp[i] == c) out[c].push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
+double neighbourhoodShare(const std::vector<std::vector<int>>& neighbourhoods, Eigen::Index n) {
+  if (neighbourhoods.empty() || n == 0) return 1.0;
+  double entries = 0;
+  for (const auto& h : neighbourhoods) entries += static_cast<double>(h.size()) * static_cast<double>(h.size());
+  return entries / (static_cast<double>(neighbourhoods.size()) * static_cast<double>(n) * static_cast<double>(n));
+}
+
+OneVsRestModel trainOneVsRestLocal(const Eigen::MatrixXd& X, const std::vector<int>& labels,
+                                   const Kernel& kernel, double C,
+                                   const std::map<int, double>& class_weight, const SolverOptions& opt,
+                                   int threads, const std::vector<std::vector<int>>* neighbourhoods) {
+  OneVsRestModel out;
+  out.classes = oneVsRestClasses(X, labels, C, class_weight, threads, "trainOneVsRestLocal");
+  if (!kernel.isPlainRbf()) throw std::invalid_argument("trainOneVsRestLocal: needs the plain RBF kernel");
+  const int k = static_cast<int>(out.classes.size());
+  const std::vector<std::vector<int>> own =
+      neighbourhoods ? std::vector<std::vector<int>>{} : classNeighbourhoods(X, labels, out.classes, kernel);
+  const std::vector<std::vector<int>>& hoods = neighbourhoods ? *neighbourhoods : own;
+  if (static_cast<int>(hoods.size()) != k)
+    throw std::invalid_argument("trainOneVsRestLocal: one neighbourhood per class needed");
+  out.models.resize(k);
+  out.solutions.resize(k);
+  const int d = static_cast<int>(X.rows());
+  std::vector<std::exception_ptr> errors(k);
+#pragma omp parallel for num_threads(std::min(threads, k)) schedule(dynamic, 1)
+  for (int c = 0; c < k; ++c) {
+    try {
+      const std::vector<int>& keep = hoods[c];
+      Eigen::VectorXd y_all, C_all;
+      oneVsRestProblem(labels, out.classes[c], C, class_weight, y_all, C_all);
+      const int m = static_cast<int>(keep.size());
+      Eigen::MatrixXd local(d, m);
+      Eigen::VectorXd y(m), sample_C(m);
+      for (int t = 0; t < m; ++t) local.col(t) = X.col(keep[t]), y[t] = y_all[keep[t]], sample_C[t] = C_all[keep[t]];
+      const SolverResult solved = solveFixedBias(local, y, sample_C, kernel.gamma, kLocalBias, opt);
+      out.models[c] = BinaryModel::fromSolution(local, y, solved, kernel);
+      SolverResult& s = out.solutions[c];
+      s = solved;
+      s.alpha = Eigen::VectorXd::Zero(X.cols());
+      for (int t = 0; t < m; ++t) s.alpha[keep[t]] = solved.alpha[t];
+      s.gradient.resize(0);
+    } catch (...) {
+      errors[c] = std::current_exception();
+    }
+  }
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return out;
+}
+
+}  // namespace svmp::svm
