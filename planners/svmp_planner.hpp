@@ -1,7 +1,8 @@
 #pragma once
 // SVMP, the global SVM-based planner of the thesis (ch. 3-4), with the steps of its Planner class
 // (ch. 4.3.2): SampleObstacle (RRT-like trees inside each C-obstacle, Algorithm 1), TrainMultiSVM
-// (one-versus-rest RBF SVMs, per-class C, ch. 3.2 and 4.1.2), FindBoundaryMilestones (each boundary
+// (one-versus-rest RBF SVMs, per-class C, ch. 3.2 and 4.1.2; on an arm each class on its
+// neighbourhood with the bias fixed, svm/local_one_vs_rest.hpp), FindBoundaryMilestones (each boundary
 // sample descends its class's risk function R_k = |F_k| to the decision boundary; kept when
 // collision-free and not a near-duplicate), MakeRoadmap (k nearest in other components, union-find;
 // by default with lazy edges, checked when a query's path uses them) and Query (A*). When a query fails, the thesis' future work (ch. 3.5): random configurations near the
