@@ -482,7 +482,8 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   double widen = 1.0;
   RepairTrail trail;
   std::optional<Roadmap> before_repair;  // restored when the query fails (below)
-  bool trees_tried = false;              // joinByTrees, once per query
+  int trees_run = 0;                     // joinByTrees runs in this query
+  bool centred_here = false;             // this query ran the deferred centring
   for (int round = 0;; ++round) {
     Roadmap& with_query = with_query_;
     with_query = roadmap_;
@@ -494,24 +495,28 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       result.status = PlanStatus::kSolved;
       break;
     }
-    // A lazy roadmap that fails first gets the build's deferred centred milestones, linked lazily
-    // (they are often what a narrow passage needs: forest_200 checked 36% more when they went
-    // straight into the eager pass), then trees (joinByTrees, once per query), then gives way to the
-    // thesis' eager MakeRoadmap (checked edges are kept), once per build; each time the query runs
-    // again as round 0. Eager connection reaches other components beyond the k nearest, and repair's
-    // frontiers need the components the roadmap has proven.
+    // A lazy roadmap that fails first tries the cheaper repairs first, each once per query and the
+    // query run again as round 0 after each: trees of half the size (joinByTrees), the build's deferred
+    // centred milestones linked lazily (often what a narrow passage needs: forest_200 checked 36% more
+    // when they went straight into the eager pass), trees of full size, then the thesis' eager
+    // MakeRoadmap (checked edges are kept), once per build. Trees first answered Fig 4.4 and panda_shelf
+    // in 0.7x the time, where centring had been wasted on most failing seeds; at half size they cost
+    // little where the centring answers (docs/reproduction.md, eighteenth session). Eager connection
+    // reaches other components beyond the k nearest, and repair's frontiers need the components the
+    // roadmap has proven.
+    if (round == 0 && options_.lazy && trees_run < (centred_here ? 2 : 1)) {
+      const int samples = trees_run == 0 && !uncentred_.empty() ? options_.lazy_trees / 2 : options_.lazy_trees;
+      ++trees_run;
+      if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result)) break;
+    }
     if (round == 0 && !uncentred_.empty()) {
       const int first = roadmap_.numNodes();
+      centred_here = true;
       if (centreDeferred() > 0) {
         connectMilestones(roadmap_, *nn_, context_, options_.k, first, stop, true);
         --round;
         continue;
       }
-    }
-    if (round == 0 && !trees_tried && options_.lazy) {
-      trees_tried = true;
-      if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, options_.lazy_trees, tree_rng, stop, result))
-        break;
     }
     if (round == 0 && !eager_pass_run_ && roadmap_.hasUnchecked()) {
       eager_pass_run_ = true;

@@ -50,11 +50,11 @@ struct SvmpOptions {
   // tunnels whose components were still growing; docs/reproduction.md, "Problems made after the defaults").
   int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
-  // When the lazy roadmap (and its centred nodes) did not answer a query, RRT-Connect trees between
-  // the start's and the goal's components for up to lazy_trees samples (0: none), their nodes linked
-  // lazily to their k nearest milestones and, when they answer, kept in the roadmap; once per query,
-  // before the build's eager pass and before any repair round (and ten times as large before a
-  // repaired query fails). On the arms the eager pass costs 25k-65k checks where trees join in a few
+  // When the lazy roadmap did not answer a query, RRT-Connect trees between the start's and the
+  // goal's components for up to lazy_trees samples (0: none), their nodes linked lazily to their k
+  // nearest milestones and, when they answer, kept in the roadmap; before the build's eager pass and
+  // before any repair round (and ten times as large before a repaired query fails). Where the build's
+  // centring is still deferred, trees of half the size come first, then the centring, then these. On the arms the eager pass costs 25k-65k checks where trees join in a few
   // thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths shorter; docs/reproduction.md, twelfth
   // session), and a repair round 15k-35k where the trees join a pocket the roadmap does not reach
   // in 1k-2k (panda_shelf, 100 queries: 0.57-0.79x the time; fourteenth session).
@@ -132,6 +132,8 @@ class SvmpPlanner final : public Planner {
   // Queries of this build answered by trees (SvmpOptions::lazy_trees): those before the eager pass
   // and the repair, or the larger ones before a repaired query fails.
   int treeAnswers() const { return tree_answers_; }
+  // Descent ends whose centring is still deferred (until a query needs them).
+  int pendingCentring() const { return static_cast<int>(uncentred_.size()); }
 
  protected:
   void buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) override;

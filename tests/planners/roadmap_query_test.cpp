@@ -346,6 +346,31 @@ TEST(RoadmapQuery, SvmpTreesJoinWhatTheLazyRoadmapDoesNotBeforeAnEagerPass) {
   EXPECT_GE(joined, 2);
 }
 
+// Cheaper repairs first: on Fig 4.4's seeds whose lazy roadmap does not answer, trees of half the
+// size come before the build's deferred centring: on several seeds they answer with the centring
+// still pending (with centring first it was spent on seeds the trees then answered), certified and
+// free when re-checked finely.
+TEST(RoadmapQuery, SvmpTriesSmallTreesBeforeTheDeferredCentring) {
+  auto w = makeWorld(test::readScenario("thesis_fig4_4.yaml"));
+  w->certify();
+  int before_centring = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    auto planner = w->planner("svmp");
+    const auto& svmp = dynamic_cast<const SvmpPlanner&>(*planner);
+    ASSERT_TRUE(planner->build(seed).solved());
+    const int pending = svmp.pendingCentring();
+    ASSERT_GT(pending, 0) << "seed " << seed << ": Fig 4.4's descent ends that collide wait for a query";
+    const PlanResult r = planner->query(w->query(), seed);
+    ASSERT_TRUE(r.solved()) << r.message;
+    if (svmp.treeAnswers() != 1 || svmp.pendingCentring() != pending) continue;
+    ++before_centring;
+    EXPECT_FALSE(svmp.eagerPassRun()) << "seed " << seed;
+    EXPECT_TRUE(r.certified);
+    expectFreeAtQuarterResolution(*w, r.path, "seed " + std::to_string(seed));
+  }
+  EXPECT_GE(before_centring, 2);
+}
+
 // Random queries on one roadmap (panda_shelf, as svmp-plan --queries 60 --seed 2): every query the
 // roadmap does not answer tries the trees before any repair round, not only the build's first. More
 // than one query is answered by trees, certified and free when re-checked finely; the trees' nodes
