@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "svm/local_one_vs_rest.hpp"
@@ -69,9 +70,11 @@ RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations,
     return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated, fk);
   }
   const std::vector<int> classes = svm::oneVsRestClasses(features, labels, C, class_weight, threads, "trainOneVsRest");
-  const auto hoods = svm::classNeighbourhoods(features, labels, classes, rbf);
-  const bool local = training == OvrTraining::kNeighbourhood ||
-                     svm::neighbourhoodShare(hoods, features.cols()) < svm::kNeighbourhoodShareLimit;
+  const bool forced = training == OvrTraining::kNeighbourhood;
+  const auto hoods = svm::classNeighbourhoods(features, labels, classes, rbf,
+                                              forced ? std::numeric_limits<double>::infinity()
+                                                     : svm::kNeighbourhoodShareLimit);
+  const bool local = forced || !hoods.empty();
   svm::OneVsRestModel ovr = local ? svm::trainOneVsRestLocal(features, labels, rbf, C, class_weight, solver, threads, &hoods)
                                   : svm::trainOneVsRest(features, labels, rbf, C, class_weight, solver, threads);
   return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated, fk);

@@ -102,7 +102,8 @@ SolverResult solveFixedBias(const Eigen::MatrixXd& samples, const Eigen::VectorX
 }  // namespace
 
 std::vector<std::vector<int>> classNeighbourhoods(const Eigen::MatrixXd& X, const std::vector<int>& labels,
-                                                  const std::vector<int>& classes, const Kernel& kernel) {
+                                                  const std::vector<int>& classes, const Kernel& kernel,
+                                                  double max_share) {
   if (!kernel.isPlainRbf()) throw std::invalid_argument("classNeighbourhoods: needs the plain RBF kernel");
   const ColumnCloud cloud{&X};
   const KdTree tree(static_cast<int>(X.rows()), cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
@@ -110,6 +111,8 @@ std::vector<std::vector<int>> classNeighbourhoods(const Eigen::MatrixXd& X, cons
   const int k = static_cast<int>(classes.size());
   std::vector<std::vector<int>> out(k);
   std::vector<int> stamp(X.cols(), -1);
+  const double n = static_cast<double>(X.cols()), max_entries = max_share * k * n * n;
+  double entries = 0;
   for (int c = 0; c < k; ++c) {
     for (Eigen::Index i = 0; i < X.cols(); ++i) {
       if (labels[i] != classes[c]) continue;
@@ -118,6 +121,8 @@ std::vector<std::vector<int>> classNeighbourhoods(const Eigen::MatrixXd& X, cons
     }
     for (Eigen::Index i = 0; i < X.cols(); ++i)
       if (stamp[i] == c) out[c].push_back(static_cast<int>(i));
+    entries += static_cast<double>(out[c].size()) * static_cast<double>(out[c].size());
+    if (entries > max_entries) return {};
   }
   return out;
 }

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -32,9 +33,12 @@ namespace svmp::svm {
 inline constexpr double kLocalBias = -1.0;  // the fixed bias of every model
 
 // Class classes[k]'s neighbourhood: its samples and every sample within the truncation radius of
-// one of them (squared distance < 5 / gamma), in sample order. Plain RBF kernel only.
+// one of them (squared distance < 5 / gamma), in sample order. Plain RBF kernel only. Empty when
+// their neighbourhoodShare would exceed max_share (the search stops there: where the neighbourhoods
+// cover the space it costs as much as a tenth of the training).
 std::vector<std::vector<int>> classNeighbourhoods(const Eigen::MatrixXd& X, const std::vector<int>& labels,
-                                                  const std::vector<int>& classes, const Kernel& kernel);
+                                                  const std::vector<int>& classes, const Kernel& kernel,
+                                                  double max_share = std::numeric_limits<double>::infinity());
 
 // The neighbourhood problems' kernel matrices against the full problems': sum_k m_k^2 / (K n^2).
 // Below kNeighbourhoodShareLimit, training on neighbourhoods is the faster (measured on the 33

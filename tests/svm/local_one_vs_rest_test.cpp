@@ -123,8 +123,32 @@ TEST(LocalOneVsRest, ThreadsDoNotChangeTheModels) {
   }
 }
 
-TEST(LocalOneVsRest, ShareOfTheKernelMatricesAndBadInput) {
+// Neighbourhoods against brute force, and the search stopping once their share exceeds max_share.
+TEST(LocalOneVsRest, NeighbourhoodsAgainstBruteForceAndTheirShare) {
+  const auto p = testing::makeBallProblem(3, 400, 4, 7);
+  const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
+  const std::vector<int> classes = {1, 2, 3, 4};
+  const auto hoods = classNeighbourhoods(p.X, p.labels, classes, k);
+  ASSERT_EQ(hoods.size(), 4u);
+  for (int c = 0; c < 4; ++c) {
+    std::vector<int> expected;
+    for (Eigen::Index i = 0; i < p.X.cols(); ++i) {
+      bool near = false;
+      for (Eigen::Index j = 0; j < p.X.cols() && !near; ++j)
+        near = p.labels[j] == classes[c] && (p.X.col(i) - p.X.col(j)).squaredNorm() < 5.0 / k.gamma;
+      if (near) expected.push_back(static_cast<int>(i));
+    }
+    EXPECT_EQ(hoods[c], expected) << "class " << c;
+  }
+  const double share = neighbourhoodShare(hoods, p.X.cols());
+  ASSERT_GT(share, 0.0);
+  ASSERT_LT(share, 1.0);
+  EXPECT_TRUE(classNeighbourhoods(p.X, p.labels, classes, k, 0.99 * share).empty());
+  EXPECT_EQ(classNeighbourhoods(p.X, p.labels, classes, k, 1.01 * share), hoods);
   EXPECT_DOUBLE_EQ(neighbourhoodShare({{0, 1}, {1, 2, 3}}, 4), (4.0 + 9.0) / (2 * 16.0));
+}
+
+TEST(LocalOneVsRest, BadInput) {
   const auto p = testing::makeBallProblem(2, 50, 2, 1);
   EXPECT_THROW(trainOneVsRestLocal(p.X, p.labels, Kernel::rbf(1.0), -1.0, {}, {}, 1), std::invalid_argument);
   Kernel poly;
