@@ -54,10 +54,12 @@ struct SvmpOptions {
   // goal's components for up to lazy_trees samples (0: none), their nodes linked lazily to their k
   // nearest milestones and, when they answer, kept in the roadmap; before the build's eager pass and
   // before any repair round (and ten times as large before a repaired query fails). Where the build's
-  // centring is still deferred, trees of half the size come first, then the centring, then these. On the arms the eager pass costs 25k-65k checks where trees join in a few
-  // thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths shorter; docs/reproduction.md, twelfth
-  // session), and a repair round 15k-35k where the trees join a pocket the roadmap does not reach
-  // in 1k-2k (panda_shelf, 100 queries: 0.57-0.79x the time; fourteenth session).
+  // centring is still deferred, trees of half the size come first, then the centring, then these
+  // (Fig 4.4 and panda_shelf 0.7x the time; eighteenth session). On the arms the eager pass costs
+  // 25k-65k checks where trees join in a few thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths
+  // shorter; docs/reproduction.md, twelfth session), and a repair round 15k-35k where the trees join
+  // a pocket the roadmap does not reach in 1k-2k (panda_shelf, 100 queries: 0.57-0.79x the time;
+  // fourteenth session).
   int lazy_trees = 300;
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
   // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
