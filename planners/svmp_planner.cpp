@@ -482,8 +482,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   double widen = 1.0;
   RepairTrail trail;
   std::optional<Roadmap> before_repair;  // restored when the query fails (below)
-  int trees_run = 0;                     // joinByTrees runs in this query
-  bool centred_here = false;             // this query ran the deferred centring
+  bool full_trees_tried = false;         // joinByTrees of lazy_trees samples, once per query
   for (int round = 0;; ++round) {
     Roadmap& with_query = with_query_;
     with_query = roadmap_;
@@ -504,19 +503,17 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     // little where the centring answers (docs/reproduction.md, eighteenth session). Eager connection
     // reaches other components beyond the k nearest, and repair's frontiers need the components the
     // roadmap has proven.
-    if (round == 0 && options_.lazy && trees_run < (centred_here ? 2 : 1)) {
-      const int samples = trees_run == 0 && !uncentred_.empty() ? options_.lazy_trees / 2 : options_.lazy_trees;
-      ++trees_run;
+    if (round == 0 && options_.lazy && !full_trees_tried) {
+      const bool centring_pending = !uncentred_.empty();  // then half-size trees, before it
+      full_trees_tried = !centring_pending;
+      const int samples = centring_pending ? options_.lazy_trees / 2 : options_.lazy_trees;
       if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result)) break;
     }
     if (round == 0 && !uncentred_.empty()) {
       const int first = roadmap_.numNodes();
-      centred_here = true;
-      if (centreDeferred() > 0) {
-        connectMilestones(roadmap_, *nn_, context_, options_.k, first, stop, true);
-        --round;
-        continue;
-      }
+      if (centreDeferred() > 0) connectMilestones(roadmap_, *nn_, context_, options_.k, first, stop, true);
+      --round;  // again, then the full-size trees, even when no end could be centred
+      continue;
     }
     if (round == 0 && !eager_pass_run_ && roadmap_.hasUnchecked()) {
       eager_pass_run_ = true;
