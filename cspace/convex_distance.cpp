@@ -1,8 +1,8 @@
 #include "cspace/convex_distance.hpp"
 
-#include <Eigen/LU>  // determinant of fixed-size matrices
+#include "cspace/gjk_simplex.hpp"
+
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -10,85 +10,10 @@
 namespace svmp::cspace {
 namespace {
 
+using gjk::Simplex;
+using gjk::closestToOrigin;
+
 double sign(double x) { return x < 0 ? -1.0 : 1.0; }
-
-// Up to four points of A - B (GJK's simplex).
-struct Simplex {
-  std::array<Eigen::Vector3d, 4> p;
-  int n = 0;
-  // Whether w is already a point (to rounding): GJK has stalled, no new support point to add.
-  bool has(const Eigen::Vector3d& w) const {
-    for (int i = 0; i < n; ++i)
-      if ((p[i] - w).squaredNorm() <= 1e-28 * (1 + w.squaredNorm())) return true;
-    return false;
-  }
-};
-
-// The point of the affine hull of the points idx[0..K] closest to the origin, with its barycentric
-// weights; false when the points are affinely dependent (a smaller subset covers that case). The
-// normal equations (Gram matrix of the edges from the first point) are solved by Cramer's rule:
-// at most 3x3, where a general factorisation cost most of a distance query.
-template <int K>
-bool projectOrigin(const Simplex& s, const int* idx, Eigen::Vector3d& x, double* w) {
-  Eigen::Matrix<double, 3, K> e;
-  for (int i = 0; i < K; ++i) e.col(i) = s.p[idx[i + 1]] - s.p[idx[0]];
-  const Eigen::Matrix<double, K, K> g = e.transpose() * e;
-  const Eigen::Matrix<double, K, 1> r = -e.transpose() * s.p[idx[0]];
-  // Singular when the determinant is below 1e-12 of the product of the diagonal (Hadamard's bound
-  // on it): the edges are then dependent to within rounding.
-  const double det = g.determinant(), scale = g.diagonal().prod();
-  if (!(std::abs(det) > 1e-12 * scale)) return false;
-  Eigen::Matrix<double, K, 1> lambda;
-  for (int i = 0; i < K; ++i) {
-    Eigen::Matrix<double, K, K> gi = g;
-    gi.col(i) = r;
-    lambda[i] = gi.determinant() / det;
-  }
-  x = s.p[idx[0]] + e * lambda;
-  w[0] = 1 - lambda.sum();
-  for (int i = 0; i < K; ++i) w[i + 1] = lambda[i];
-  return true;
-}
-
-// The point of conv(s) closest to the origin; s keeps only the points of the face holding it. Every
-// face is tried (at most 15): the closest point lies inside some face, where it is that face's
-// projection, and every projection with non-negative weights is a point of the hull.
-Eigen::Vector3d closestToOrigin(Simplex& s) {
-  double best = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d closest = s.p[0];
-  int best_mask = 1;
-  for (int mask = 1; mask < (1 << s.n); ++mask) {
-    int idx[4], k = 0;
-    for (int i = 0; i < s.n; ++i)
-      if (mask & (1 << i)) idx[k++] = i;
-    Eigen::Vector3d x;
-    double w[4] = {1, 0, 0, 0};
-    bool ok = true;
-    switch (k) {
-      case 1:
-        x = s.p[idx[0]];
-        break;
-      case 2:
-        ok = projectOrigin<1>(s, idx, x, w);
-        break;
-      case 3:
-        ok = projectOrigin<2>(s, idx, x, w);
-        break;
-      default:
-        ok = projectOrigin<3>(s, idx, x, w);
-        break;
-    }
-    if (!ok || *std::min_element(w, w + k) < 0 || !(x.squaredNorm() < best)) continue;
-    best = x.squaredNorm();
-    closest = x;
-    best_mask = mask;
-  }
-  Simplex kept;
-  for (int i = 0; i < s.n; ++i)
-    if (best_mask & (1 << i)) kept.p[kept.n++] = s.p[i];
-  s = kept;
-  return closest;
-}
 
 }  // namespace
 
@@ -157,6 +82,33 @@ std::optional<double> sphereBoxSeparation(const robots::Shape& a, const Eigen::I
   return separationAlong(a, pa, b, pb, a_sphere ? v : Eigen::Vector3d(-v));
 }
 
+// Two boxes by the separating-axis test (Gottschalk, Lin and Manocha, OBBTree, 1996; Ericson 4.4.1):
+// they are apart exactly when one of the 15 axes (3 face normals each, 9 edge-pair cross products)
+// separates their projections, so the answer is exact where GJK needs up to four iterations (the
+// planar arms' links inside an obstacle). The small term added to |R| keeps a near-zero cross
+// product of parallel edges from separating them on rounding: grazing pairs count as touching.
+bool boxesOverlap(const robots::Shape& a, const Eigen::Isometry3d& pa, const robots::Shape& b,
+                  const Eigen::Isometry3d& pb) {
+  const Eigen::Vector3d ea = 0.5 * a.dims, eb = 0.5 * b.dims;
+  const Eigen::Matrix3d r = pa.linear().transpose() * pb.linear();  // b's axes in a's frame
+  const Eigen::Matrix3d abs_r = r.cwiseAbs().array() + 1e-12;
+  const Eigen::Vector3d t = pa.linear().transpose() * (pb.translation() - pa.translation());
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(t[i]) > ea[i] + abs_r.row(i).dot(eb)) return false;
+  for (int j = 0; j < 3; ++j)
+    if (std::abs(t.dot(r.col(j))) > abs_r.col(j).dot(ea) + eb[j]) return false;
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra = ea[i1] * abs_r(i2, j) + ea[i2] * abs_r(i1, j);
+      const double rb = eb[j1] * abs_r(i, j2) + eb[j2] * abs_r(i, j1);
+      if (std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j)) > ra + rb) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d& pa,
@@ -189,6 +141,8 @@ double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d&
 std::optional<bool> intersects(const robots::Shape& a_shape, const Eigen::Isometry3d& pa,
                                const robots::Shape& b_shape, const Eigen::Isometry3d& pb) {
   if (const auto exact = sphereBoxSeparation(a_shape, pa, b_shape, pb)) return *exact <= 0;
+  if (a_shape.kind == robots::ShapeKind::kBox && b_shape.kind == robots::ShapeKind::kBox)
+    return boxesOverlap(a_shape, pa, b_shape, pb);
   double margin = 0;
   const robots::Shape a = core(a_shape, margin), b = core(b_shape, margin);
   Eigen::Vector3d v = pa.translation() - pb.translation();
