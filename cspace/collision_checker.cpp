@@ -38,11 +38,43 @@ std::atomic<std::uint64_t> next_instance_id{1};
 
 }  // namespace
 
+namespace {
+
+// A shape where it stands. Its world pose and bounding box are kept here, so that pairs are culled
+// inline: FCL's AABB tests are calls into its shared library, a third of a check of the Panda among
+// 8 boards. Its FCL object is placed only when FCL is asked: by the broadphase tree, or for a pair
+// our GJK leaves undecided.
+struct Placed {
+  const robots::Shape* shape = nullptr;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::AlignedBox3d box;
+  fcl::CollisionObjectd* object = nullptr;
+  bool object_placed = false;  // object's transform is pose
+
+  void place(const Eigen::Isometry3d& world) {
+    pose = world;
+    box = shape->boundsAt(world);
+    object_placed = false;
+  }
+  fcl::CollisionObjectd* fclObject() {
+    if (!object_placed) {
+      object->setTransform(pose.linear(), pose.translation());
+      object->computeAABB();
+      object_placed = true;
+    }
+    return object;
+  }
+};
+
+}  // namespace
+
 struct CollisionChecker::Workspace {
   robots::Poses poses;
-  // links[i] holds link i's shapes; shape_offsets[i] their poses in the link frame.
+  // links[i] owns link i's FCL objects; parts[i] places them.
   std::vector<std::vector<std::unique_ptr<fcl::CollisionObjectd>>> links;
+  std::vector<std::vector<Placed>> parts;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> obstacles;  // index = id - 1
+  std::vector<Placed> obstacle_parts;                              // index = id - 1
   std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager;  // all obstacles, when many
 };
 
@@ -75,14 +107,26 @@ CollisionChecker::~CollisionChecker() = default;
 std::unique_ptr<CollisionChecker::Workspace> CollisionChecker::makeWorkspace() const {
   auto ws = std::make_unique<Workspace>();
   ws->links.resize(robot_->numLinks());
+  ws->parts.resize(robot_->numLinks());
   for (int i = 0; i < robot_->numLinks(); ++i)
-    for (const auto& shape : robot_->linkShapes(i))
+    for (const auto& shape : robot_->linkShapes(i)) {
       ws->links[i].push_back(std::make_unique<fcl::CollisionObjectd>(makeGeometry(shape)));
+      Placed part;
+      part.shape = &shape;
+      part.object = ws->links[i].back().get();
+      ws->parts[i].push_back(part);
+    }
   for (const auto& o : env_->obstacles()) {
     auto obj = std::make_unique<fcl::CollisionObjectd>(makeGeometry(o.shape), o.shape.pose.linear(),
                                                        o.shape.pose.translation());
     obj->computeAABB();
     obj->setUserData(reinterpret_cast<void*>(static_cast<intptr_t>(o.id)));
+    Placed part;
+    part.shape = &o.shape;
+    part.object = obj.get();
+    part.place(o.shape.pose);
+    part.object_placed = true;
+    ws->obstacle_parts.push_back(part);
     ws->obstacles.push_back(std::move(obj));
   }
   if (ws->obstacles.size() > kBroadphaseThreshold) {
@@ -110,54 +154,45 @@ CollisionChecker::Workspace& CollisionChecker::workspace() const {
 
 void CollisionChecker::placeRobot(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q) const {
   robot_->linkPoses(q, ws.poses);
-  for (int i = 0; i < robot_->numLinks(); ++i) {
-    const auto& shapes = robot_->linkShapes(i);
-    for (size_t k = 0; k < shapes.size(); ++k) {
-      const Eigen::Isometry3d world = ws.poses[i] * shapes[k].pose;
-      ws.links[i][k]->setTransform(world.linear(), world.translation());
-      ws.links[i][k]->computeAABB();
+  for (int i = 0; i < robot_->numLinks(); ++i)
+    for (Placed& part : ws.parts[i]) {
+      part.place(ws.poses[i] * part.shape->pose);
+      if (ws.manager) part.fclObject();  // the broadphase tree reads FCL's AABB
     }
-  }
 }
 
 namespace {
 
 // The narrow phase: a GJK run of our own decides (cspace/convex_distance.hpp: 0.38 us for a link
 // capsule near a board against FCL's 0.53, BM_CapsuleBoxCollide), FCL where the run cannot.
-bool shapesCollide(fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::CollisionObjectd* b,
-                   const robots::Shape& sb) {
-  if (const auto decided = intersects(sa, a->getTransform(), sb, b->getTransform())) return *decided;
+bool shapesCollide(Placed& a, Placed& b) {
+  if (const auto decided = intersects(*a.shape, a.pose, *b.shape, b.pose)) return *decided;
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
-  return fcl::collide(a, b, request, result) > 0;
+  return fcl::collide(a.fclObject(), b.fclObject(), request, result) > 0;
 }
 
 // A pair outside the broadphase: bounding boxes first, then the narrow phase.
-bool pairCollides(fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::CollisionObjectd* b,
-                  const robots::Shape& sb) {
-  return a->getAABB().overlap(b->getAABB()) && shapesCollide(a, sa, b, sb);
-}
+bool pairCollides(Placed& a, Placed& b) { return a.box.intersects(b.box) && shapesCollide(a, b); }
 
-// A lower bound on the distance between two placed objects, 0 when they may touch: a separating
+// A lower bound on the distance between two placed shapes, 0 when they may touch: a separating
 // plane's, from a GJK run of our own (cspace/convex_distance.hpp) stopped within `rel_gap` of the
 // distance. FCL's distance is not asked: its GJK overestimates, so its value could only serve as a
 // first direction, and it cost more than the whole run of ours.
-double objectDistance(const fcl::CollisionObjectd* a, const robots::Shape& sa,
-                      const fcl::CollisionObjectd* b, const robots::Shape& sb, double rel_gap) {
-  const auto& pa = a->getTransform();
-  const auto& pb = b->getTransform();
-  return std::max(0.0, distanceLowerBound(sa, pa, sb, pb, pa.translation() - pb.translation(), rel_gap));
+double objectDistance(const Placed& a, const Placed& b, double rel_gap) {
+  return std::max(0.0, distanceLowerBound(*a.shape, a.pose, *b.shape, b.pose,
+                                          a.pose.translation() - b.pose.translation(), rel_gap));
 }
+
+// The distance between the bounding boxes: no closer than the shapes.
+double boxDistance(const Placed& a, const Placed& b) { return std::sqrt(a.box.squaredExteriorDistance(b.box)); }
 
 }  // namespace
 
 bool CollisionChecker::linksCollide(Workspace& ws, int a, int b) const {
-  for (size_t ka = 0; ka < ws.links[a].size(); ++ka)
-    for (size_t kb = 0; kb < ws.links[b].size(); ++kb) {
-      fcl::CollisionObjectd* oa = ws.links[a][ka].get();
-      fcl::CollisionObjectd* ob = ws.links[b][kb].get();
-      if (pairCollides(oa, robot_->linkShapes(a)[ka], ob, robot_->linkShapes(b)[kb])) return true;
-    }
+  for (Placed& pa : ws.parts[a])
+    for (Placed& pb : ws.parts[b])
+      if (pairCollides(pa, pb)) return true;
   return false;
 }
 
@@ -166,7 +201,8 @@ namespace {
 struct BroadphaseQuery {
   bool include_virtual;
   const Environment* env;
-  const robots::Shape* part;  // the link part's shape (its FCL object carries no user data)
+  Placed* part;  // the link part (its FCL object carries no user data)
+  std::vector<Placed>* obstacles;
   int lowest = std::numeric_limits<int>::max();
 };
 
@@ -176,9 +212,8 @@ bool lowestHitCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void*
   if (!a->getUserData()) std::swap(a, b);
   const int id = static_cast<int>(reinterpret_cast<intptr_t>(a->getUserData()));
   if (id >= query->lowest) return false;
-  const Obstacle& obstacle = query->env->byId(id);
-  if (!query->include_virtual && obstacle.is_virtual) return false;
-  if (shapesCollide(b, *query->part, a, obstacle.shape)) query->lowest = id;
+  if (!query->include_virtual && query->env->byId(id).is_virtual) return false;
+  if (shapesCollide(*query->part, (*query->obstacles)[id - 1])) query->lowest = id;
   return false;  // keep going: the lowest id wins
 }
 
@@ -193,20 +228,17 @@ int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool
   placeRobot(ws, q);
   int lowest = std::numeric_limits<int>::max();
   for (int i = 0; i < robot_->numLinks(); ++i) {
-    for (size_t k = 0; k < ws.links[i].size(); ++k) {
-      fcl::CollisionObjectd* part = ws.links[i][k].get();
-      const robots::Shape& shape = robot_->linkShapes(i)[k];
+    for (Placed& part : ws.parts[i]) {
       if (ws.manager) {
-        BroadphaseQuery query{include_virtual, env_.get(), &shape, lowest};
-        ws.manager->collide(part, &query, lowestHitCallback);
+        BroadphaseQuery query{include_virtual, env_.get(), &part, &ws.obstacle_parts, lowest};
+        ws.manager->collide(part.object, &query, lowestHitCallback);
         lowest = query.lowest;
         continue;
       }
       for (const auto& o : env_->obstacles()) {
         if (o.id >= lowest) break;
         if (o.is_virtual && !include_virtual) continue;
-        fcl::CollisionObjectd* obj = ws.obstacles[o.id - 1].get();
-        if (pairCollides(part, shape, obj, o.shape)) lowest = o.id;
+        if (pairCollides(part, ws.obstacle_parts[o.id - 1])) lowest = o.id;
       }
     }
   }
@@ -227,13 +259,10 @@ bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) 
       if (linksCollide(ws, a, b)) return true;
     return false;
   }
-  fcl::CollisionObjectd* obj = ws.obstacles.at(id - 1).get();
-  const robots::Shape& obstacle = env_->byId(id).shape;
+  Placed& obstacle = ws.obstacle_parts.at(id - 1);
   for (int i = 0; i < robot_->numLinks(); ++i)
-    for (size_t k = 0; k < ws.links[i].size(); ++k) {
-      fcl::CollisionObjectd* part = ws.links[i][k].get();
-      if (pairCollides(part, robot_->linkShapes(i)[k], obj, obstacle)) return true;
-    }
+    for (Placed& part : ws.parts[i])
+      if (pairCollides(part, obstacle)) return true;
   return false;
 }
 
@@ -247,14 +276,12 @@ double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) c
   // 12% of capsule-box and 19% of box-box cases (certification_test).
   double best = std::numeric_limits<double>::infinity();
   for (int i = 0; i < robot_->numLinks(); ++i)
-    for (size_t k = 0; k < ws.links[i].size(); ++k) {
-      const fcl::CollisionObjectd* part = ws.links[i][k].get();
+    for (const Placed& part : ws.parts[i])
       for (const auto& o : env_->obstacles()) {
-        const fcl::CollisionObjectd* obj = ws.obstacles[o.id - 1].get();
-        if (o.is_virtual || !(part->getAABB().distance(obj->getAABB()) < best)) continue;
-        best = std::min(best, objectDistance(part, robot_->linkShapes(i)[k], obj, o.shape, 1e-6));
+        const Placed& obstacle = ws.obstacle_parts[o.id - 1];
+        if (o.is_virtual || !(boxDistance(part, obstacle) < best)) continue;
+        best = std::min(best, objectDistance(part, obstacle, 1e-6));
       }
-    }
   return best;
 }
 
@@ -273,27 +300,22 @@ bool CollisionChecker::freeDistances(const Eigen::Ref<const Eigen::VectorXd>& q,
   placeRobot(ws, q);
   // The AABBs' distance bounds the shapes' from below: a pair farther than the link's best so far
   // (or its cap) is skipped. Returns true at contact.
-  auto touches = [&](int link, fcl::CollisionObjectd* a, const robots::Shape& sa, fcl::CollisionObjectd* b,
-                     const robots::Shape& sb) {
+  auto touches = [&](int link, const Placed& a, const Placed& b) {
     double& best = d[link];
     // Within 1e-3 of the distance: a looser bound only costs the validator a few more bisections.
-    if (a->getAABB().distance(b->getAABB()) < best) best = std::min(best, objectDistance(a, sa, b, sb, 1e-3));
+    if (boxDistance(a, b) < best) best = std::min(best, objectDistance(a, b, 1e-3));
     return best == 0;
   };
   auto anyContact = [&] {
     for (int i = 0; i < robot_->numLinks(); ++i)
-      for (size_t k = 0; k < ws.links[i].size(); ++k)
+      for (const Placed& part : ws.parts[i])
         for (const auto& o : env_->obstacles())
-          if (!o.is_virtual && touches(i, ws.links[i][k].get(), robot_->linkShapes(i)[k],
-                                       ws.obstacles[o.id - 1].get(), o.shape))
-            return true;
+          if (!o.is_virtual && touches(i, part, ws.obstacle_parts[o.id - 1])) return true;
     // A self pair counts for its distal link, whose bound covers its motion relative to the other.
     for (const auto& [a, b] : self_pairs_)
-      for (size_t ka = 0; ka < ws.links[a].size(); ++ka)
-        for (size_t kb = 0; kb < ws.links[b].size(); ++kb)
-          if (touches(std::max(a, b), ws.links[a][ka].get(), robot_->linkShapes(a)[ka], ws.links[b][kb].get(),
-                      robot_->linkShapes(b)[kb]))
-            return true;
+      for (const Placed& pa : ws.parts[a])
+        for (const Placed& pb : ws.parts[b])
+          if (touches(std::max(a, b), pa, pb)) return true;
     return false;
   };
   const bool contact = anyContact();

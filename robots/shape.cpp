@@ -46,8 +46,8 @@ double Shape::reach() const {
   return pose.translation().norm() + extent;
 }
 
-Eigen::AlignedBox3d Shape::bounds() const {
-  const Eigen::Matrix3d rotation = pose.linear().cwiseAbs();
+Eigen::AlignedBox3d Shape::boundsAt(const Eigen::Isometry3d& at) const {
+  const Eigen::Matrix3d rotation = at.linear().cwiseAbs();
   Eigen::Vector3d half = Eigen::Vector3d::Zero();
   switch (kind) {
     case ShapeKind::kBox: half = rotation * (0.5 * dims); break;
@@ -55,7 +55,7 @@ Eigen::AlignedBox3d Shape::bounds() const {
     case ShapeKind::kCylinder: half = rotation * Eigen::Vector3d(dims.x(), dims.x(), 0.5 * dims.y()); break;
     case ShapeKind::kCapsule: half = rotation.col(2) * (0.5 * dims.y()) + Eigen::Vector3d::Constant(dims.x()); break;
   }
-  return {pose.translation() - half, pose.translation() + half};
+  return {at.translation() - half, at.translation() + half};
 }
 
 double Shape::thickness() const {

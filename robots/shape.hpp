@@ -33,7 +33,9 @@ struct Shape {
   double reach() const;
   // An axis-aligned box holding the shape, in the frame it is attached to (not the tightest for a
   // rotated cylinder: its bounding box's).
-  Eigen::AlignedBox3d bounds() const;
+  Eigen::AlignedBox3d bounds() const { return boundsAt(pose); }
+  // The same with the shape placed at `at` instead of its own pose (a link shape's world pose).
+  Eigen::AlignedBox3d boundsAt(const Eigen::Isometry3d& at) const;
   // The smallest width across the shape: a box's shortest side, a sphere's or capsule's diameter, the
   // smaller of a cylinder's diameter and length.
   double thickness() const;
