@@ -22,7 +22,8 @@ constexpr double kDegenerate = 1e-12;
 
 // The point of the affine hull of the points idx[0..K] closest to the origin, with its barycentric
 // weights; false when the points are affinely dependent (a smaller subset covers that case). The
-// normal equations (Gram matrix of the edges from the first point) are solved by Cramer's rule.
+// normal equations (Gram matrix of the edges from the first point) are solved by Cramer's rule: at
+// most 3x3, where a general factorisation cost most of a distance query.
 template <int K>
 bool projectOrigin(const Simplex& s, const int* idx, Eigen::Vector3d& x, double* w) {
   Eigen::Matrix<double, 3, K> e;
@@ -119,6 +120,8 @@ bool closestOnTetrahedron(const Simplex& s, Eigen::Vector3d& x, int& mask) {
 
 }  // namespace
 
+// Every face is tried (at most 15): the closest point lies inside some face, where it is that face's
+// projection, and every projection with non-negative weights is a point of the hull.
 Eigen::Vector3d closestToOriginByFaces(Simplex& s) {
   double best = std::numeric_limits<double>::infinity();
   Eigen::Vector3d closest = s.p[0];

@@ -8,6 +8,10 @@
 #include <numbers>
 #include <random>
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/narrowphase/collision.h>
+
 #include "cspace/collision_checker.hpp"
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
@@ -196,6 +200,58 @@ TEST(CollisionCheckerTest, BroadphaseAgreesWithPerObstacleTests) {
   }
   EXPECT_GT(hit, 30);  // the comparison covers both answers
   EXPECT_LT(hit, 270);
+}
+
+// The whole check (the checker's own bounding boxes, then its GJK or the separating-axis test)
+// against FCL's collide on every pair, placed from the robot's link poses: the Panda's capsules and
+// a planar arm's boxes among boards, random configurations, a fifth to a half of them colliding.
+TEST(CollisionCheckerTest, ArmsAgreeWithFclOnEveryPair) {
+  const auto board = [](Eigen::Vector3d sides, Eigen::Vector3d centre) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = centre;
+    pose.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    return obstacle(Shape::box(sides, pose));
+  };
+  const std::vector<std::shared_ptr<const robots::Robot>> robots = {
+      std::make_shared<robots::DhArm>(robots::pandaSpec()), planarArm({1.0, 0.8, 0.6, 0.5}, 0.05)};
+  const auto env = environment({board({0.6, 0.4, 0.03}, {0.5, 0.1, 0.3}), board({0.05, 0.8, 0.8}, {-0.4, 0.3, 0.4}),
+                                board({1.2, 0.1, 1.0}, {0.2, -1.0, 0.2})});
+  std::mt19937_64 rng(17);
+  for (const auto& robot : robots) {
+    const CollisionChecker checker(robot, env, false);
+    std::vector<std::shared_ptr<fcl::CollisionObjectd>> obstacles;
+    for (const auto& o : env->obstacles())
+      obstacles.push_back(std::make_shared<fcl::CollisionObjectd>(
+          std::make_shared<fcl::Boxd>(o.shape.dims), o.shape.pose.linear(), o.shape.pose.translation()));
+    int colliding = 0;
+    robots::Poses poses;
+    for (int trial = 0; trial < 2000; ++trial) {
+      Eigen::VectorXd q(robot->dof());
+      for (int i = 0; i < q.size(); ++i)
+        q[i] = std::uniform_real_distribution<double>(robot->lowerLimits()[i], robot->upperLimits()[i])(rng);
+      robot->linkPoses(q, poses);
+      bool fcl_hit = false;
+      for (int i = 0; i < robot->numLinks() && !fcl_hit; ++i)
+        for (const Shape& part : robot->linkShapes(i)) {
+          std::shared_ptr<fcl::CollisionGeometryd> geometry;
+          if (part.kind == robots::ShapeKind::kBox)
+            geometry = std::make_shared<fcl::Boxd>(part.dims);
+          else
+            geometry = std::make_shared<fcl::Capsuled>(part.dims.x(), part.dims.y());
+          const Eigen::Isometry3d world = poses[i] * part.pose;
+          const fcl::CollisionObjectd link(geometry, world.linear(), world.translation());
+          for (const auto& o : obstacles) {
+            fcl::CollisionRequestd request;
+            fcl::CollisionResultd result;
+            fcl_hit = fcl_hit || fcl::collide(&link, o.get(), request, result) > 0;
+          }
+        }
+      EXPECT_EQ(checker.check(q) != kFree, fcl_hit) << "dof " << robot->dof() << ", trial " << trial;
+      colliding += fcl_hit;
+    }
+    EXPECT_GT(colliding, 2000 / 5) << "dof " << robot->dof();
+    EXPECT_LT(colliding, 2000 / 2) << "dof " << robot->dof();
+  }
 }
 
 TEST(CollisionCheckerTest, CountersCountEveryConfigurationTested) {
