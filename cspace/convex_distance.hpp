@@ -10,7 +10,7 @@
 // on a polytope and ends exactly (on round shapes GJK only converges). A sphere against a box is in
 // closed form. A bug there can only loosen the bound: every value returned is such a plane's
 // separation, never a distance taken on trust. Positive means the shapes are disjoint (one inside
-// the other included).
+// the other included). GJK's simplex step: cspace/gjk_simplex.hpp.
 //
 // Thread safety: pure functions.
 #include <Eigen/Geometry>
@@ -39,8 +39,9 @@ double distanceLowerBound(const robots::Shape& a, const Eigen::Isometry3d& pa,
 // Whether the placed shapes intersect (touching included), when a GJK run on their cores decides it:
 // a plane separating the cores by more than the radii proves them apart, a point of the cores'
 // difference within the radii of the origin proves them touching (a sphere against a box in closed
-// form). Empty when the run stalls undecided (round shapes grazing each other): ask FCL then. The
-// collision checker's narrow phase (cspace/collision_checker.cpp).
+// form, two boxes by the separating-axis test). Empty when the run stalls undecided (round shapes
+// grazing each other): ask FCL then. The collision checker's narrow phase
+// (cspace/collision_checker.cpp).
 std::optional<bool> intersects(const robots::Shape& a, const Eigen::Isometry3d& pa, const robots::Shape& b,
                                const Eigen::Isometry3d& pb);
 
