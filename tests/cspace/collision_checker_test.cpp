@@ -8,14 +8,13 @@
 #include <numbers>
 #include <random>
 
-#include <fcl/geometry/shape/box.h>
-#include <fcl/geometry/shape/capsule.h>
 #include <fcl/narrowphase/collision.h>
 
 #include "cspace/collision_checker.hpp"
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
 #include "robots/point_robot.hpp"
+#include "tests/cspace/fcl_geometry.hpp"
 
 namespace svmp::cspace {
 namespace {
@@ -221,8 +220,8 @@ TEST(CollisionCheckerTest, ArmsAgreeWithFclOnEveryPair) {
     const CollisionChecker checker(robot, env, false);
     std::vector<std::shared_ptr<fcl::CollisionObjectd>> obstacles;
     for (const auto& o : env->obstacles())
-      obstacles.push_back(std::make_shared<fcl::CollisionObjectd>(
-          std::make_shared<fcl::Boxd>(o.shape.dims), o.shape.pose.linear(), o.shape.pose.translation()));
+      obstacles.push_back(std::make_shared<fcl::CollisionObjectd>(test::fclGeometry(o.shape), o.shape.pose.linear(),
+                                                                  o.shape.pose.translation()));
     int colliding = 0;
     robots::Poses poses;
     for (int trial = 0; trial < 2000; ++trial) {
@@ -233,13 +232,8 @@ TEST(CollisionCheckerTest, ArmsAgreeWithFclOnEveryPair) {
       bool fcl_hit = false;
       for (int i = 0; i < robot->numLinks() && !fcl_hit; ++i)
         for (const Shape& part : robot->linkShapes(i)) {
-          std::shared_ptr<fcl::CollisionGeometryd> geometry;
-          if (part.kind == robots::ShapeKind::kBox)
-            geometry = std::make_shared<fcl::Boxd>(part.dims);
-          else
-            geometry = std::make_shared<fcl::Capsuled>(part.dims.x(), part.dims.y());
           const Eigen::Isometry3d world = poses[i] * part.pose;
-          const fcl::CollisionObjectd link(geometry, world.linear(), world.translation());
+          const fcl::CollisionObjectd link(test::fclGeometry(part), world.linear(), world.translation());
           for (const auto& o : obstacles) {
             fcl::CollisionRequestd request;
             fcl::CollisionResultd result;

@@ -8,18 +8,16 @@
 #include <random>
 #include <vector>
 
-#include <fcl/geometry/shape/box.h>
-#include <fcl/geometry/shape/capsule.h>
-#include <fcl/geometry/shape/cylinder.h>
-#include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 
 #include "cspace/convex_distance.hpp"
+#include "tests/cspace/fcl_geometry.hpp"
 
 namespace svmp::cspace {
 namespace {
 
 using robots::Shape;
+using test::fclGeometry;
 
 Shape randomShape(int kind, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> size(0.05, 0.4);
@@ -118,19 +116,6 @@ TEST(ConvexDistanceTest, CapsuleAgainstBoxWithinTheRequestedGapDownToContact) {
       EXPECT_LE(lower, truth + 1e-12) << "trial " << trial << " gap " << gap;
       EXPECT_GE(lower, (1 - 1e-3) * truth - 1e-12) << "trial " << trial << " gap " << gap;
     }
-  }
-}
-
-std::shared_ptr<fcl::CollisionGeometryd> fclGeometry(const Shape& s) {
-  switch (s.kind) {
-    case robots::ShapeKind::kBox:
-      return std::make_shared<fcl::Boxd>(s.dims);
-    case robots::ShapeKind::kSphere:
-      return std::make_shared<fcl::Sphered>(s.dims.x());
-    case robots::ShapeKind::kCapsule:
-      return std::make_shared<fcl::Capsuled>(s.dims.x(), s.dims.y());
-    default:
-      return std::make_shared<fcl::Cylinderd>(s.dims.x(), s.dims.y());
   }
 }
 

@@ -231,13 +231,14 @@ void BM_TrainOvrInterleaved_neighbourhood(benchmark::State& state) {
   std::vector<int> classes;
   for (int c = 1; c <= 8; ++c) classes.push_back(c);
   OneVsRestModel m;
+  std::vector<std::vector<int>> hoods;
   for (auto _ : state) {
-    const auto hoods = classNeighbourhoods(p.X, p.labels, classes, k);
+    hoods = classNeighbourhoods(p.X, p.labels, classes, k);
     m = trainOneVsRestLocal(p.X, p.labels, k, kInterleavedC, {}, SolverOptions(), 1, &hoods);
   }
   long long sv = 0, iterations = 0;
   for (const auto& s : m.solutions) sv += s.support_vectors, iterations += s.iterations;
-  state.counters["share"] = neighbourhoodShare(classNeighbourhoods(p.X, p.labels, classes, k), p.X.cols());
+  state.counters["share"] = neighbourhoodShare(hoods, p.X.cols());
   state.counters["SV"] = static_cast<double>(sv);
   state.counters["iterations"] = static_cast<double>(iterations);
 }
