@@ -1,5 +1,7 @@
 #include "planners/ompl/state_bridge.hpp"
 
+#include <algorithm>
+
 #include <ompl/base/spaces/RealVectorStateProjections.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
@@ -88,19 +90,21 @@ ob::SpaceInformationPtr makeSpaceInformation(const planners::PlanningContext& co
   }
   space->setBounds(bounds);
   if (sampler) space->setStateSamplerAllocator(sampler);
-  // With its cell sizes set (OMPL's default: the bounds in 20 cells) the projection counts as the
-  // user's, so the space's setup keeps it, sets it up and lists its parameters; one registered after
-  // setup would leave the space's ParamSet bound to the projection it replaced (freed). Orthogonal,
-  // not linear: a linear projection's Eigen matrix would be freed inside libompl, whose Eigen may
-  // align differently from ours (SVMP_NATIVE).
-  if (dim <= 2) {
-    std::vector<unsigned int> all(dim);
-    std::vector<double> cells(dim);
-    for (int i = 0; i < dim; ++i) all[i] = i, cells[i] = (bounds.high[i] - bounds.low[i]) / 20.0;
-    auto projection = std::make_shared<ob::RealVectorOrthogonalProjectionEvaluator>(space, all);
-    projection->setCellSizes(cells);
-    space->registerDefaultProjection(projection);
-  }
+  // The default projection (SBL's grid) is on the first two coordinates, an arm's base joints: OMPL's
+  // own beyond 2-D is a random linear projection drawn from its process-wide generator, so SBL's runs
+  // did not repeat for a seed (Fig 4.6, the Panda: every run differed). With its cell sizes set
+  // (OMPL's default: the bounds in 20 cells) the projection counts as the user's, so the space's
+  // setup keeps it, sets it up and lists its parameters; one registered after setup would leave the
+  // space's ParamSet bound to the projection it replaced (freed). Orthogonal, not linear: a linear
+  // projection's Eigen matrix would be freed inside libompl, whose Eigen may align differently from
+  // ours (SVMP_NATIVE).
+  const int projected = std::min(dim, 2);
+  std::vector<unsigned int> coordinates(projected);
+  std::vector<double> cells(projected);
+  for (int i = 0; i < projected; ++i) coordinates[i] = i, cells[i] = (bounds.high[i] - bounds.low[i]) / 20.0;
+  auto projection = std::make_shared<ob::RealVectorOrthogonalProjectionEvaluator>(space, coordinates);
+  projection->setCellSizes(cells);
+  space->registerDefaultProjection(projection);
   auto si = std::make_shared<ob::SpaceInformation>(space);
   si->setStateValidityChecker(std::make_shared<ContextValidityChecker>(si, context, owner));
   si->setMotionValidator(std::make_shared<ContextMotionValidator>(si, context, owner));

@@ -118,6 +118,21 @@ TEST(Determinism, PrmSameSeedSameResult) {
   expectSameResult(a, b);
 }
 
+#ifdef SVMP_WITH_OMPL
+// SBL's grid projection beyond 2-D (Fig 4.6: 6 joints) follows the run's seed, not OMPL's
+// process-wide generator: two worlds, the same seed, the same run.
+TEST(Determinism, OmplSblSameSeedSameResultBeyondTwoDimensions) {
+  auto w1 = makeWorld(test::readScenario("thesis_fig4_6.yaml"));
+  auto w2 = makeWorld(test::readScenario("thesis_fig4_6.yaml"));
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const PlanResult a = w1->planner("ompl-sbl")->solve(w1->query(), seed);
+    const PlanResult b = w2->planner("ompl-sbl")->solve(w2->query(), seed);
+    ASSERT_TRUE(a.solved()) << a.message;
+    expectSameResult(a, b);
+  }
+}
+#endif
+
 // Start or goal in collision: a status, not a crash.
 void expectInvalidEndpoints(const std::string& planner) {
   auto w = makeWorld(gapScenario(0.03, kPlanners));
