@@ -1,5 +1,7 @@
 #include "planners/nearest_neighbors.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <nanoflann.hpp>
 
 #include "svm/column_cloud.hpp"
@@ -48,6 +50,52 @@ std::vector<int> NearestNeighbors::nearest(const Eigen::Ref<const Eigen::VectorX
   std::vector<double> dist(n);
   const size_t found = tree_->index.knnSearch(x.data(), n, index.data(), dist.data());
   return std::vector<int>(index.begin(), index.begin() + found);
+}
+
+namespace {
+std::uint64_t cellKey(std::int64_t i, std::int64_t j) {
+  return static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(j);
+}
+}  // namespace
+
+NearDuplicateFilter::NearDuplicateFilter(const cspace::ConfigurationSpace& space, double radius, int capacity)
+    : scale_(space.metricScale()), r2_(radius * radius), cell_(radius), points_(scale_.size(), capacity) {
+  const Eigen::VectorXd range = (space.upper() - space.lower()).cwiseProduct(scale_);
+  for (int d = 0; d < range.size(); ++d)
+    if (range[d] > range[axes_[0]]) axes_[0] = d;
+  axes_[1] = axes_[0] == 0 && range.size() > 1 ? 1 : 0;
+  for (int d = 0; d < range.size(); ++d)
+    if (d != axes_[0] && range[d] > range[axes_[1]]) axes_[1] = d;
+}
+
+void NearDuplicateFilter::add(const Eigen::VectorXd& q) { insert(q.cwiseProduct(scale_)); }
+
+bool NearDuplicateFilter::addUnlessNear(const Eigen::VectorXd& q) {
+  if (!(r2_ > 0)) return true;
+  const Eigen::VectorXd x = q.cwiseProduct(scale_);
+  const auto [c0, c1] = cellOf(x);
+  for (std::int64_t i = c0 - 1; i <= c0 + 1; ++i)
+    for (std::int64_t j = c1 - 1; j <= c1 + 1; ++j) {
+      const auto bucket = buckets_.find(cellKey(i, j));
+      if (bucket == buckets_.end()) continue;
+      for (const int p : bucket->second)
+        if ((points_.col(p) - x).squaredNorm() < r2_) return false;
+    }
+  insert(x);
+  return true;
+}
+
+std::pair<std::int64_t, std::int64_t> NearDuplicateFilter::cellOf(const Eigen::VectorXd& x) const {
+  // Clamped: a radius far below the coordinates only merges far cells, which the exact test separates.
+  auto cell = [&](double v) { return static_cast<std::int64_t>(std::floor(std::clamp(v / cell_, -1e15, 1e15))); };
+  return {cell(x[axes_[0]]), cell(x[axes_[1]])};
+}
+
+void NearDuplicateFilter::insert(const Eigen::VectorXd& x) {
+  if (!(r2_ > 0)) return;
+  points_.col(count_) = x;
+  const auto [c0, c1] = cellOf(x);
+  buckets_[cellKey(c0, c1)].push_back(count_++);
 }
 
 }  // namespace svmp::planners

@@ -16,7 +16,6 @@
 #include "planners/tree_connect.hpp"
 
 namespace svmp::planners {
-
 SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   SvmpOptions o;
   o.sigma = params.getDouble("sigma", o.sigma, 1e-9, 1e6);
@@ -237,21 +236,12 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
     n *= 2;
   }
   // Near-duplicates are dropped before any collision check, in a fixed order (deterministic).
-  const Eigen::VectorXd& scale = context_.space.metricScale();
   if (duplicate_radius < 0) duplicate_radius = options_.duplicate_radius;
-  const double r2 = duplicate_radius * duplicate_radius;
-  Eigen::MatrixXd kept(scale.size(), roadmap_.numNodes() + n);
-  int count = 0;
-  for (const auto& q : roadmap_.nodes()) kept.col(count++) = q.cwiseProduct(scale);
+  NearDuplicateFilter kept(context_.space, duplicate_radius, roadmap_.numNodes() + n);
+  for (const auto& q : roadmap_.nodes()) kept.add(q);
   std::vector<int> fresh;
-  for (int i = 0; i < n; ++i) {
-    const Eigen::VectorXd x = ends[i].cwiseProduct(scale);
-    bool duplicate = false;
-    for (int j = 0; j < count && !duplicate; ++j) duplicate = (kept.col(j) - x).squaredNorm() < r2;
-    if (duplicate) continue;
-    kept.col(count++) = x;
-    fresh.push_back(i);
-  }
+  for (int i = 0; i < n; ++i)
+    if (kept.addUnlessNear(ends[i])) fresh.push_back(i);
   std::vector<char> valid(fresh.size());
 #pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
   for (int f = 0; f < static_cast<int>(fresh.size()); ++f) {

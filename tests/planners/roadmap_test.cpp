@@ -268,5 +268,51 @@ TEST(NearestNeighbors, EmptySetAndMovedTreeStillAnswer) {
   EXPECT_EQ(got[2], 1);
 }
 
+// The grid must give exactly what the scan over every kept point gives, in order: in 1, 2, 3 and 7
+// dimensions with unequal weights (so the widest coordinates are not the first), points drawn in
+// clusters (many in a cell) and radius 0 (everything kept).
+TEST(NearDuplicateFilter, KeepsWhatTheScanOverEveryKeptPointKeeps) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int dim : {1, 2, 3, 7})
+    for (double radius : {0.0, 0.01, 0.08, 0.5}) {
+      const Eigen::VectorXd lower = -Eigen::VectorXd::Ones(dim), upper = 2 * Eigen::VectorXd::Ones(dim);
+      Eigen::VectorXd weights(dim);
+      for (int d = 0; d < dim; ++d) weights[d] = 0.2 + 3 * unit(rng);
+      const cspace::ConfigurationSpace space(lower, upper, weights);
+      std::vector<Eigen::VectorXd> points;
+      for (int c = 0; c < 20; ++c) {
+        Eigen::VectorXd centre(dim);
+        space.sampleUniform(rng, centre);
+        for (int i = 0; i < 40; ++i)
+          points.push_back(centre + 0.1 * Eigen::VectorXd::NullaryExpr(dim, [&] { return unit(rng) - 0.5; }));
+      }
+      const int seeded = 30;  // the first ones are added unconditionally, as a roadmap's nodes are
+      NearDuplicateFilter filter(space, radius, static_cast<int>(points.size()));
+      std::vector<Eigen::VectorXd> kept;
+      int dropped = 0;
+      for (size_t i = 0; i < points.size(); ++i) {
+        bool near = false;
+        for (const auto& k : kept) near = near || space.distance(k, points[i]) < radius;
+        if (static_cast<int>(i) < seeded) {
+          filter.add(points[i]);
+          kept.push_back(points[i]);
+          continue;
+        }
+        ASSERT_EQ(filter.addUnlessNear(points[i]), !near) << "dim " << dim << " radius " << radius << " point " << i;
+        if (near) {
+          ++dropped;
+        } else {
+          kept.push_back(points[i]);
+        }
+      }
+      if (radius == 0) {
+        EXPECT_EQ(dropped, 0);
+      } else if (radius >= 0.08) {
+        EXPECT_GT(dropped, 100) << "dim " << dim << ": the test must drop points to mean anything";
+      }
+    }
+}
+
 }  // namespace
 }  // namespace svmp::planners
