@@ -10,23 +10,51 @@ namespace svmp::planners {
 
 using svm::ColumnCloud;
 
+// The index over `cloud`, its dimension fixed at compile time for 2-7 joints (nanoflann then unrolls
+// its distances and keeps a search's per-dimension distances on the stack, not in a vector
+// allocated per search), dynamic otherwise.
 struct NearestNeighbors::Tree {
-  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Adaptor<double, ColumnCloud>,
-                                                    ColumnCloud, -1, size_t>;
   ColumnCloud cloud;
+  explicit Tree(const Eigen::MatrixXd* pts) : cloud{pts} {}
+  virtual ~Tree() = default;
+  virtual size_t knn(const double* x, size_t n, size_t* index, double* dist) const = 0;
+};
+
+namespace {
+
+template <int D>
+struct TreeOf final : NearestNeighbors::Tree {
+  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Adaptor<double, ColumnCloud>, ColumnCloud, D, size_t>;
   Index index;
-  Tree(const Eigen::MatrixXd* pts, int dim)
-      : cloud{pts}, index(dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+  TreeOf(const Eigen::MatrixXd* pts, int dim)
+      : Tree(pts), index(dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
     index.buildIndex();
   }
+  size_t knn(const double* x, size_t n, size_t* out, double* dist) const override {
+    return index.knnSearch(x, n, out, dist);
+  }
 };
+
+std::unique_ptr<NearestNeighbors::Tree> makeTree(const Eigen::MatrixXd* pts, int dim) {
+  switch (dim) {
+    case 2: return std::make_unique<TreeOf<2>>(pts, dim);
+    case 3: return std::make_unique<TreeOf<3>>(pts, dim);
+    case 4: return std::make_unique<TreeOf<4>>(pts, dim);
+    case 5: return std::make_unique<TreeOf<5>>(pts, dim);
+    case 6: return std::make_unique<TreeOf<6>>(pts, dim);
+    case 7: return std::make_unique<TreeOf<7>>(pts, dim);
+    default: return std::make_unique<TreeOf<-1>>(pts, dim);
+  }
+}
+
+}  // namespace
 
 NearestNeighbors::NearestNeighbors(const std::vector<Eigen::VectorXd>& points,
                                    const Eigen::VectorXd& scale)
     : scale_(scale) {
   scaled_.resize(scale.size(), static_cast<Eigen::Index>(points.size()));
   for (size_t i = 0; i < points.size(); ++i) scaled_.col(i) = points[i].cwiseProduct(scale);
-  if (!points.empty()) tree_ = std::make_unique<Tree>(&scaled_, static_cast<int>(scale.size()));
+  if (!points.empty()) tree_ = makeTree(&scaled_, static_cast<int>(scale.size()));
 }
 
 NearestNeighbors::~NearestNeighbors() = default;
@@ -48,7 +76,7 @@ std::vector<int> NearestNeighbors::nearest(const Eigen::Ref<const Eigen::VectorX
   const Eigen::VectorXd x = q.cwiseProduct(scale_);
   std::vector<size_t> index(n);
   std::vector<double> dist(n);
-  const size_t found = tree_->index.knnSearch(x.data(), n, index.data(), dist.data());
+  const size_t found = tree_->knn(x.data(), n, index.data(), dist.data());
   return std::vector<int>(index.begin(), index.begin() + found);
 }
 

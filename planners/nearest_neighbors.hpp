@@ -23,8 +23,9 @@ class NearestNeighbors {
   std::vector<int> nearest(const Eigen::Ref<const Eigen::VectorXd>& q, int k) const;
   int size() const { return static_cast<int>(scaled_.cols()); }
 
+  struct Tree;  // the k-d tree, of a fixed dimension where it can be (nearest_neighbors.cpp)
+
  private:
-  struct Tree;
   Eigen::MatrixXd scaled_;  // dim x n, column-major (one point per column)
   Eigen::VectorXd scale_;
   std::unique_ptr<Tree> tree_;
