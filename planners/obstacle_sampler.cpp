@@ -35,8 +35,8 @@ struct Tree {
 // compiler unrolls each column's distance: Fig 4.10's sampling 0.91x, panda_shelf's 0.95x
 // (docs/benchmarks.md); the same nearest nodes.
 template <int D>
-int nearestNodeFixed(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd& x) {
-  const Eigen::Map<const Eigen::Matrix<double, D, Eigen::Dynamic>> nodes(scaled.data(), D, scaled.cols());
+int nearestNodeOf(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd& x) {
+  const Eigen::Map<const Eigen::Matrix<double, D, Eigen::Dynamic>> nodes(scaled.data(), scaled.rows(), scaled.cols());
   const Eigen::Matrix<double, D, 1> target = x;
   int best = 0;
   double best_d = std::numeric_limits<double>::infinity();
@@ -51,26 +51,15 @@ int nearestNodeFixed(const Eigen::MatrixXd& scaled, int count, const Eigen::Vect
 }
 
 int nearestNode(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd& x) {
-  // Fixed sizes for the usual dimensions: the compiler unrolls each column's distance.
   switch (x.size()) {
-    case 2: return nearestNodeFixed<2>(scaled, count, x);
-    case 3: return nearestNodeFixed<3>(scaled, count, x);
-    case 4: return nearestNodeFixed<4>(scaled, count, x);
-    case 5: return nearestNodeFixed<5>(scaled, count, x);
-    case 6: return nearestNodeFixed<6>(scaled, count, x);
-    case 7: return nearestNodeFixed<7>(scaled, count, x);
-    default: break;
+    case 2: return nearestNodeOf<2>(scaled, count, x);
+    case 3: return nearestNodeOf<3>(scaled, count, x);
+    case 4: return nearestNodeOf<4>(scaled, count, x);
+    case 5: return nearestNodeOf<5>(scaled, count, x);
+    case 6: return nearestNodeOf<6>(scaled, count, x);
+    case 7: return nearestNodeOf<7>(scaled, count, x);
+    default: return nearestNodeOf<Eigen::Dynamic>(scaled, count, x);
   }
-  int best = 0;
-  double best_d = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < count; ++i) {
-    const double d = (scaled.col(i) - x).squaredNorm();
-    if (d < best_d) {
-      best_d = d;
-      best = i;
-    }
-  }
-  return best;
 }
 
 // No configuration touches it (robots::Robot::mayReach): a root search would spend

@@ -16,6 +16,7 @@
 #include "planners/tree_connect.hpp"
 
 namespace svmp::planners {
+
 SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   SvmpOptions o;
   o.sigma = params.getDouble("sigma", o.sigma, 1e-9, 1e6);
