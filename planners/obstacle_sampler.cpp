@@ -63,7 +63,7 @@ int nearestNode(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd&
 }
 
 // No configuration touches it (robots::Robot::mayReach): a root search would spend
-// max_root_attempts draws finding nothing (an obstacle beyond an arm's reach: 200k checks).
+// max_root_attempts draws finding nothing (an obstacle beyond an arm's reach: 20k checks).
 bool outOfReach(const ValidityChecker& checker, const Obstacle& obstacle) {
   return obstacle.id > 0 && !obstacle.root_sample && !checker.robot().mayReach(obstacle.shape.bounds());
 }

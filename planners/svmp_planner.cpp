@@ -53,7 +53,7 @@ std::string SvmpOptions::validate() const {
   if (!positiveOrDerived(sigma)) return "sigma must be positive, got " + std::to_string(sigma);
   if (!(C > 0) || !std::isfinite(C)) return "C must be positive, got " + std::to_string(C);
   if (!positiveOrDerived(step)) return "step must be positive, got " + std::to_string(step);
-  if (samples_per_tree < 1 || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0 ||
+  if ((samples_per_tree < 1 && samples_per_tree != kDerived) || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0 ||
       lazy_trees < 0)
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2, "
            "repair_rounds and lazy_trees >= 0)";
@@ -70,8 +70,12 @@ std::string SvmpOptions::validate() const {
   return "";
 }
 
-SvmpOptions SvmpOptions::resolvedFor(const cspace::ConfigurationSpace& space) const {
+SvmpOptions SvmpOptions::resolvedFor(const cspace::ConfigurationSpace& space, int trees) const {
   SvmpOptions o = *this;
+  if (o.samples_per_tree == kDerived) {
+    const int spread = kSampleBudget / std::max(trees, 1);
+    o.samples_per_tree = std::clamp(spread, kMinSamplesPerTree, kSamplesPerTree);
+  }
   if (o.step == kDerived)
     o.step = (space.upper() - space.lower()).cwiseProduct(space.metricScale()).mean() / 40;
   if (o.sigma == kDerived) o.sigma = 2 * o.step;
@@ -92,15 +96,23 @@ SVMP_REGISTER_PLANNER("svmp", [](const PlanningContext& context, const cspace::P
   // One tree per real obstacle and the self-collision region; every sample is an SVM training point.
   constexpr long kMaxSamples = 2000000;
   const long trees = context.checker.environment().numReal() + 1;
-  if (o.samples_per_tree * trees > kMaxSamples)
+  if (static_cast<long>(o.samples_per_tree) * trees > kMaxSamples)
     throw cspace::ScenarioError("planners.svmp.samples_per_tree: " + std::to_string(o.samples_per_tree) + " x " +
                                 std::to_string(trees) + " trees exceeds " + std::to_string(kMaxSamples) +
                                 " obstacle samples");
   return std::make_unique<SvmpPlanner>(context, o);
 });
 
+namespace {
+// One tree per real obstacle, and one in the self-collision region when it is sampled.
+int obstacleTrees(const PlanningContext& context, const SvmpOptions& options) {
+  return context.checker.environment().numReal() +
+         (options.sample_self_collision && context.checker.checksSelfCollision() ? 1 : 0);
+}
+}  // namespace
+
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
-    : Planner(context), options_(options.resolvedFor(context.space)) {
+    : Planner(context), options_(options.resolvedFor(context.space, obstacleTrees(context, options))) {
   if (const std::string err = options.validate(); !err.empty()) throw std::invalid_argument("svmp: " + err);
   if (options_.duplicate_radius < 0) options_.duplicate_radius = 0.5 * options_.step;
 }

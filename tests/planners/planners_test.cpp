@@ -366,6 +366,34 @@ TEST(NarrowPassage, SvmpRepairThreadsAMillimetreGap) {
   }
 }
 
+// Unset samples_per_tree: 200 a tree up to 12 trees, then 2,400 samples spread over the trees, at
+// least 20 a tree; a given value stays. On a 6-DoF arm among 30 small boxes (bench/unseen) the build
+// then samples at most 2,400 configurations, where 200 a tree samples about 4,500, and it still plans.
+TEST(NarrowPassage, SvmpSpreadsItsSampleBudgetOverManyObstacles) {
+  const cspace::ConfigurationSpace unit(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones());
+  EXPECT_EQ(SvmpOptions{}.resolvedFor(unit, 12).samples_per_tree, 200);
+  EXPECT_EQ(SvmpOptions{}.resolvedFor(unit, 13).samples_per_tree, 2400 / 13);
+  EXPECT_EQ(SvmpOptions{}.resolvedFor(unit, 500).samples_per_tree, 20);
+  SvmpOptions given;
+  given.samples_per_tree = 300;
+  EXPECT_EQ(given.resolvedFor(unit, 500).samples_per_tree, 300);
+
+  auto w = makeWorld(test::readScenario("../unseen/crs6_clutter30.yaml"));
+  w->certify();
+  const auto planner = w->planner("svmp");
+  const PlanResult r = planner->solve(w->query(), 1);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_TRUE(pathIsValid(*w, r.path));
+  const auto& spread = dynamic_cast<const SvmpPlanner&>(*planner);
+  EXPECT_LE(spread.samples().size(), SvmpOptions::kSampleBudget);
+  SvmpOptions full;
+  full.samples_per_tree = SvmpOptions::kSamplesPerTree;
+  SvmpPlanner each(w->context, full);
+  PhaseTimes times;
+  ASSERT_TRUE(each.sampleObstacle(1, times));
+  EXPECT_GT(each.samples().size(), 3 * SvmpOptions::kSampleBudget / 2);
+}
+
 // Unset sigma and step follow the space's scale (1/40 of the mean range in the metric, sigma twice the
 // step); given values stay. The gap family's files give none and still thread a 1 mm gap.
 TEST(NarrowPassage, SvmpDerivesSigmaAndStepFromTheSpace) {
@@ -377,13 +405,13 @@ TEST(NarrowPassage, SvmpDerivesSigmaAndStepFromTheSpace) {
       "goal: [9, 9]\n"
       "resolution: 0.01\n"
       "metric_weights: [1.0, 0.5]\n");
-  const SvmpOptions derived = SvmpOptions{}.resolvedFor(big->space);
+  const SvmpOptions derived = SvmpOptions{}.resolvedFor(big->space, 1);
   EXPECT_DOUBLE_EQ(derived.step, (10 * 1.0 + 20 * std::sqrt(0.5)) / 2 / 40);  // metric: sqrt(w) q
   EXPECT_DOUBLE_EQ(derived.sigma, 2 * derived.step);
   SvmpOptions given;
   given.sigma = 0.7;
-  EXPECT_DOUBLE_EQ(given.resolvedFor(big->space).sigma, 0.7);
-  EXPECT_DOUBLE_EQ(given.resolvedFor(big->space).step, derived.step);
+  EXPECT_DOUBLE_EQ(given.resolvedFor(big->space, 1).sigma, 0.7);
+  EXPECT_DOUBLE_EQ(given.resolvedFor(big->space, 1).step, derived.step);
   auto gap = makeWorld(gapScenario(0.001, "  prm: {samples: 100}\n"));
   gap->certify();
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
