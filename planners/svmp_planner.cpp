@@ -53,8 +53,8 @@ std::string SvmpOptions::validate() const {
   if (!positiveOrDerived(sigma)) return "sigma must be positive, got " + std::to_string(sigma);
   if (!(C > 0) || !std::isfinite(C)) return "C must be positive, got " + std::to_string(C);
   if (!positiveOrDerived(step)) return "step must be positive, got " + std::to_string(step);
-  if ((samples_per_tree < 1 && samples_per_tree != kDerived) || k < 1 || descent_iterations < 1 || repair_samples < 2 || repair_rounds < 0 ||
-      lazy_trees < 0)
+  if ((samples_per_tree < 1 && samples_per_tree != kDerived) || k < 1 || descent_iterations < 1 ||
+      repair_samples < 2 || repair_rounds < 0 || lazy_trees < 0)
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2, "
            "repair_rounds and lazy_trees >= 0)";
   if (!positiveOrDerived(tree_range)) return "tree_range must be positive, got " + std::to_string(tree_range);

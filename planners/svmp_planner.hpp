@@ -34,9 +34,9 @@ struct SvmpOptions {
   double step = kDerived;         // obstacle sampling step (weighted metric)
   // Unset (kDerived): kSamplesPerTree a tree while the trees hold at most kSampleBudget samples in
   // all, then kSampleBudget / trees, at least kMinSamplesPerTree (resolvedFor). Then the samples, and
-  // the training that grows faster than they do, stop growing with the obstacle count: a 6-DoF arm
-  // among 30-60 small boxes trained for 103-473 ms on 200 a tree, 17-22 ms on 43-77 a tree, at the
-  // same success (docs/reproduction.md, "An arm in clutter").
+  // the training that grows faster than they do, stop growing with the obstacle count: arms among
+  // 30-60 small boxes trained for 113-152 ms on 200 a tree, 12-14 ms on 39-77 a tree, at the same
+  // success (docs/reproduction.md, "An arm in clutter").
   static constexpr int kSamplesPerTree = 200, kSampleBudget = 2400, kMinSamplesPerTree = 20;
   int samples_per_tree = static_cast<int>(kDerived);
   int k = 10;                     // roadmap neighbours
