@@ -10,9 +10,9 @@ namespace svmp::planners {
 
 using svm::ColumnCloud;
 
-// The index over `cloud`, its dimension fixed at compile time for 2-7 joints (nanoflann then unrolls
-// its distances and keeps a search's per-dimension distances on the stack, not in a vector
-// allocated per search), dynamic otherwise.
+// The index over `cloud`, its dimension fixed at compile time where withFixedDimension fixes it
+// (nanoflann then also keeps a search's per-dimension distances on the stack, not in a vector
+// allocated per search).
 struct NearestNeighbors::Tree {
   ColumnCloud cloud;
   explicit Tree(const Eigen::MatrixXd* pts) : cloud{pts} {}
@@ -36,15 +36,9 @@ struct TreeOf final : NearestNeighbors::Tree {
 };
 
 std::unique_ptr<NearestNeighbors::Tree> makeTree(const Eigen::MatrixXd* pts, int dim) {
-  switch (dim) {
-    case 2: return std::make_unique<TreeOf<2>>(pts, dim);
-    case 3: return std::make_unique<TreeOf<3>>(pts, dim);
-    case 4: return std::make_unique<TreeOf<4>>(pts, dim);
-    case 5: return std::make_unique<TreeOf<5>>(pts, dim);
-    case 6: return std::make_unique<TreeOf<6>>(pts, dim);
-    case 7: return std::make_unique<TreeOf<7>>(pts, dim);
-    default: return std::make_unique<TreeOf<-1>>(pts, dim);
-  }
+  return withFixedDimension(dim, [&](auto d) -> std::unique_ptr<NearestNeighbors::Tree> {
+    return std::make_unique<TreeOf<decltype(d)::value>>(pts, dim);
+  });
 }
 
 }  // namespace

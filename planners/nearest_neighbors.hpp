@@ -5,12 +5,29 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
 #include "cspace/configuration_space.hpp"
 
 namespace svmp::planners {
+
+// Calls f(std::integral_constant<int, D>{}) with D = dim for 2 to 7 dimensions (the point robots and
+// the arms), D = -1 (Eigen::Dynamic, nanoflann's dynamic size) otherwise: a scan or a k-d tree whose
+// dimension is fixed at compile time unrolls its distances.
+template <class F>
+decltype(auto) withFixedDimension(int dim, F&& f) {
+  switch (dim) {
+    case 2: return f(std::integral_constant<int, 2>{});
+    case 3: return f(std::integral_constant<int, 3>{});
+    case 4: return f(std::integral_constant<int, 4>{});
+    case 5: return f(std::integral_constant<int, 5>{});
+    case 6: return f(std::integral_constant<int, 6>{});
+    case 7: return f(std::integral_constant<int, 7>{});
+    default: return f(std::integral_constant<int, -1>{});
+  }
+}
 
 class NearestNeighbors {
  public:

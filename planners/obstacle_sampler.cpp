@@ -7,6 +7,8 @@
 #include <random>
 #include <sstream>
 
+#include "planners/nearest_neighbors.hpp"
+
 namespace svmp::planners {
 
 using cspace::ConfigurationSpace;
@@ -51,15 +53,8 @@ int nearestNodeOf(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorX
 }
 
 int nearestNode(const Eigen::MatrixXd& scaled, int count, const Eigen::VectorXd& x) {
-  switch (x.size()) {
-    case 2: return nearestNodeOf<2>(scaled, count, x);
-    case 3: return nearestNodeOf<3>(scaled, count, x);
-    case 4: return nearestNodeOf<4>(scaled, count, x);
-    case 5: return nearestNodeOf<5>(scaled, count, x);
-    case 6: return nearestNodeOf<6>(scaled, count, x);
-    case 7: return nearestNodeOf<7>(scaled, count, x);
-    default: return nearestNodeOf<Eigen::Dynamic>(scaled, count, x);
-  }
+  return withFixedDimension(static_cast<int>(x.size()),
+                            [&](auto d) { return nearestNodeOf<decltype(d)::value>(scaled, count, x); });
 }
 
 // No configuration touches it (robots::Robot::mayReach): a root search would spend
