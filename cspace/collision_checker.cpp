@@ -173,11 +173,12 @@ bool pairCollides(Placed& a, Placed& b) { return a.box.intersects(b.box) && shap
 
 // A lower bound on the distance between two placed shapes, 0 when they may touch: a separating
 // plane's, from a GJK run of our own (cspace/convex_distance.hpp) stopped within `rel_gap` of the
-// distance. FCL's distance is not asked: its GJK overestimates, so its value could only serve as a
+// distance, or once beyond `least` (the callers keep the least over pairs, so the result is the
+// same). FCL's distance is not asked: its GJK overestimates, so its value could only serve as a
 // first direction, and it cost more than the whole run of ours.
-double objectDistance(const Placed& a, const Placed& b, double rel_gap) {
+double objectDistance(const Placed& a, const Placed& b, double rel_gap, double least) {
   return std::max(0.0, distanceLowerBound(*a.shape, a.pose, *b.shape, b.pose,
-                                          a.pose.translation() - b.pose.translation(), rel_gap));
+                                          a.pose.translation() - b.pose.translation(), rel_gap, least));
 }
 
 // The distance between the bounding boxes: no closer than the shapes.
@@ -276,7 +277,7 @@ double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) c
       for (const auto& o : env_->obstacles()) {
         const Placed& obstacle = ws.obstacle_parts[o.id - 1];
         if (o.is_virtual || !(boxDistance(part, obstacle) < best)) continue;
-        best = std::min(best, objectDistance(part, obstacle, 1e-6));
+        best = std::min(best, objectDistance(part, obstacle, 1e-6, best));
       }
   return best;
 }
@@ -299,7 +300,7 @@ bool CollisionChecker::freeDistances(const Eigen::Ref<const Eigen::VectorXd>& q,
   auto touches = [&](int link, const Placed& a, const Placed& b) {
     double& best = d[link];
     // Within 1e-3 of the distance: a looser bound only costs the validator a few more bisections.
-    if (boxDistance(a, b) < best) best = std::min(best, objectDistance(a, b, 1e-3));
+    if (boxDistance(a, b) < best) best = std::min(best, objectDistance(a, b, 1e-3, best));
     return best == 0;
   };
   auto anyContact = [&] {

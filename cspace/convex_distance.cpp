@@ -113,7 +113,7 @@ bool boxesOverlap(const robots::Shape& a, const Eigen::Isometry3d& pa, const rob
 
 double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d& pa,
                           const robots::Shape& b_shape, const Eigen::Isometry3d& pb,
-                          const Eigen::Vector3d& hint, double rel_gap) {
+                          const Eigen::Vector3d& hint, double rel_gap, double enough) {
   if (const auto exact = sphereBoxSeparation(a_shape, pa, b_shape, pb)) return *exact;
   double margin = 0;
   const robots::Shape a = core(a_shape, margin), b = core(b_shape, margin);
@@ -126,6 +126,7 @@ double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d&
     const Eigen::Vector3d w = supportPoint(a, pa, -v) - supportPoint(b, pb, v);
     const double norm = v.norm();
     best = std::max(best, v.dot(w) / norm);
+    if (best - margin >= enough) break;
     // |v| bounds the cores' distance from above once v is a point of the simplex (the hint need not
     // be); within the margin the shapes may touch, and the bound is <= 0 whatever follows.
     if (s.n > 0 && (norm - best <= rel_gap * (norm - margin) || norm <= margin)) break;

@@ -14,6 +14,7 @@
 //
 // Thread safety: pure functions.
 #include <Eigen/Geometry>
+#include <limits>
 #include <optional>
 
 #include "robots/shape.hpp"
@@ -30,11 +31,13 @@ double separationAlong(const robots::Shape& a, const Eigen::Isometry3d& pa, cons
 
 // The largest separation found: along `hint` (a vector of A - B, e.g. the centres' offset), then
 // along a GJK run until it is within `rel_gap` of the GJK upper bound, or after 64
-// iterations. <= the true distance; <= 0 when no separating plane was found (touching,
-// overlapping).
+// iterations, or as soon as it reaches `enough` (a caller keeping the least distance over many
+// pairs needs no more of a pair already beyond its least). <= the true distance; <= 0 when no
+// separating plane was found (touching, overlapping).
 double distanceLowerBound(const robots::Shape& a, const Eigen::Isometry3d& pa,
                           const robots::Shape& b, const Eigen::Isometry3d& pb,
-                          const Eigen::Vector3d& hint, double rel_gap = 1e-6);
+                          const Eigen::Vector3d& hint, double rel_gap = 1e-6,
+                          double enough = std::numeric_limits<double>::infinity());
 
 // Whether the placed shapes intersect (touching included), when a GJK run on their cores decides it:
 // a plane separating the cores by more than the radii proves them apart, a point of the cores'

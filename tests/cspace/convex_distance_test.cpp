@@ -119,6 +119,29 @@ TEST(ConvexDistanceTest, CapsuleAgainstBoxWithinTheRequestedGapDownToContact) {
   }
 }
 
+// A caller keeping the least distance over pairs passes its least as `enough`: the run may stop
+// once beyond it, so the least is the same as with the full run, and the run stops early for some
+// pairs (else the parameter did nothing).
+TEST(ConvexDistanceTest, StoppingBeyondEnoughKeepsTheLeastOverPairs) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> fraction(0.2, 1.5);
+  int earlier = 0;
+  for (int ka = 0; ka < 4; ++ka)
+    for (int kb = 0; kb < 4; ++kb)
+      for (int trial = 0; trial < 50; ++trial) {
+        const Shape a = randomShape(ka, rng), b = randomShape(kb, rng);
+        const Eigen::Isometry3d pa = randomPose(rng, 0.8), pb = randomPose(rng, 0.8);
+        const Eigen::Vector3d hint = pa.translation() - pb.translation();
+        const double full = distanceLowerBound(a, pa, b, pb, hint, 1e-6);
+        const double least = fraction(rng) * std::max(full, 1e-3);  // the other pairs' least
+        const double cut = distanceLowerBound(a, pa, b, pb, hint, 1e-6, least);
+        EXPECT_LE(cut, full) << "kinds " << ka << ", " << kb << " trial " << trial;
+        EXPECT_EQ(std::min(cut, least), std::min(full, least)) << "kinds " << ka << ", " << kb << " trial " << trial;
+        earlier += cut < full;
+      }
+  EXPECT_GT(earlier, 20);
+}
+
 // The checker's narrow phase against FCL's on every pair of primitives, half of them placed near
 // contact (the second shape slid along the centres' line to within 1 mm of the first's bound):
 // wherever our GJK decides, it decides as FCL does, and it leaves few pairs to FCL.
