@@ -60,7 +60,8 @@ RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations,
                                           double sigma, double C, const std::map<int, double>& class_weight,
                                           const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
                                           bool truncated, int threads, const robots::Robot* fk,
-                                          OvrTraining training) {
+                                          OvrTraining training,
+                                          const std::vector<std::vector<int>>* neighbourhoods) {
   const svm::Kernel rbf = svm::Kernel::rbfFromSigma(sigma);
   const Eigen::MatrixXd features =
       fk ? controlPointFeatures(*fk, configurations) : Eigen::MatrixXd(scale.asDiagonal() * configurations);
@@ -70,10 +71,14 @@ RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations,
     return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated, fk);
   }
   const std::vector<int> classes = svm::oneVsRestClasses(features, labels, C, class_weight, threads, "trainOneVsRest");
-  const bool forced = training == OvrTraining::kNeighbourhood;
-  const auto hoods = svm::classNeighbourhoods(features, labels, classes, rbf,
-                                              forced ? std::numeric_limits<double>::infinity()
-                                                     : svm::kNeighbourhoodShareLimit);
+  if (neighbourhoods && neighbourhoods->size() != classes.size())
+    throw std::invalid_argument("trainOneVsRest: one neighbourhood per class needed");
+  const bool forced = training == OvrTraining::kNeighbourhood || neighbourhoods;
+  std::vector<std::vector<int>> computed;
+  if (!neighbourhoods)
+    computed = svm::classNeighbourhoods(features, labels, classes, rbf,
+                                        forced ? std::numeric_limits<double>::infinity() : svm::kNeighbourhoodShareLimit);
+  const auto& hoods = neighbourhoods ? *neighbourhoods : computed;
   const bool local = forced || !hoods.empty();
   svm::OneVsRestModel ovr = local ? svm::trainOneVsRestLocal(features, labels, rbf, C, class_weight, solver, threads, &hoods)
                                   : svm::trainOneVsRest(features, labels, rbf, C, class_weight, solver, threads);

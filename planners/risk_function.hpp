@@ -51,7 +51,8 @@ struct DescentResult {
 // How one-versus-rest trains: the thesis' C-SVC on every sample (kFull), each class on its
 // neighbourhood with a fixed bias (kNeighbourhood, svm/local_one_vs_rest.hpp), or the latter where
 // the neighbourhoods are small enough to pay (kAuto: svm::neighbourhoodShare below its limit). The
-// FK kernel always trains kFull.
+// FK kernel always trains kFull. Neighbourhoods the caller already has (svm::classNeighbourhoods over
+// the same scaled samples and classes) are trained on as they are, unless kFull.
 enum class OvrTraining { kFull, kNeighbourhood, kAuto };
 
 class RiskFunction {
@@ -67,7 +68,8 @@ class RiskFunction {
                                      double sigma, double C, const std::map<int, double>& class_weight,
                                      const svm::SolverOptions& solver, const Eigen::VectorXd& scale,
                                      bool truncated, int threads, const robots::Robot* fk = nullptr,
-                                     OvrTraining training = OvrTraining::kFull);
+                                     OvrTraining training = OvrTraining::kFull,
+                                     const std::vector<std::vector<int>>* neighbourhoods = nullptr);
   // `workspace`: kept by a caller that trains again and again, so that each solve reuses the last
   // one's cache memory instead of faulting in fresh pages (svm/solver_workspace.hpp).
   static RiskFunction trainBinary(const Eigen::MatrixXd& configurations, const Eigen::VectorXd& y,

@@ -12,6 +12,7 @@
 
 #include "planners/planner_registry.hpp"
 #include "planners/class_colouring.hpp"
+#include "svm/local_one_vs_rest.hpp"
 #include "planners/roadmap_builder.hpp"
 #include "planners/tree_connect.hpp"
 
@@ -171,18 +172,6 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   svm::SolverOptions solver;
   solver.eps = options_.eps;
   solver.cache_mb = options_.cache_mb;
-  // Classes: one per obstacle, or colours of the obstacles' adjacency graph (weight: the largest of
-  // the colour's obstacles, so no obstacle's penalty drops).
-  class_of_label_.clear();
-  const bool colour = options_.classes == "colour" || (options_.classes == "auto" && weights.size() > 8);
-  if (colour) {
-    class_of_label_ = colourClasses(samples_.points, samples_.labels, context_.space.metricScale(), 3 * options_.sigma);
-    // No two obstacles adjacent: still two models (one-versus-rest needs a rest).
-    bool one = true;
-    for (const auto& [label, c] : class_of_label_) one = one && c == 1;
-    if (one) class_of_label_.begin()->second = 2;
-  } else
-    for (const auto& [label, w] : weights) class_of_label_[label] = label;
   // Every boundary sample, each obstacle's first sample (so no class is left without one) and an
   // evenly spread share of the interior ones (deterministic).
   std::vector<int> kept;
@@ -198,17 +187,49 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
     kept.push_back(i);
   }
   Eigen::MatrixXd points(samples_.points.rows(), static_cast<Eigen::Index>(kept.size()));
-  std::vector<int> classes(kept.size());
+  std::vector<int> labels(kept.size());
   for (size_t j = 0; j < kept.size(); ++j) {
     points.col(static_cast<Eigen::Index>(j)) = samples_.points.col(kept[j]);
-    classes[j] = class_of_label_.at(samples_.labels[kept[j]]);
+    labels[j] = samples_.labels[kept[j]];
   }
+  const bool fk = options_.kernel == "fk";
+  // Classes: one per obstacle, or colours of the obstacles' adjacency graph (weight: the largest of
+  // the colour's obstacles, so no obstacle's penalty drops). `auto` keeps one per obstacle up to 8,
+  // and up to kMaxObstacleClasses while their neighbourhoods (svm/local_one_vs_rest.hpp) hold under
+  // half of one full problem's kernel entries: a colouring trains at least two full problems (its
+  // colours' neighbourhoods cover the space), and sparse obstacles (3-D forests, an arm's clutter)
+  // then train faster per obstacle (docs/reproduction.md). Beyond kMaxObstacleClasses colours keep
+  // the model count bounded, as issue 13 asks where obstacles are many.
+  constexpr int kMaxObstacleClasses = 64;
+  std::vector<std::vector<int>> obstacle_hoods;
+  bool colour = options_.classes == "colour";
+  if (options_.classes == "auto" && weights.size() > 8) {
+    colour = true;
+    if (!fk && options_.training != "full" && static_cast<int>(weights.size()) <= kMaxObstacleClasses) {
+      std::vector<int> ids;
+      for (const auto& [label, w] : weights) ids.push_back(label);
+      obstacle_hoods = svm::classNeighbourhoods(context_.space.metricScale().asDiagonal() * points, labels, ids,
+                                                svm::Kernel::rbfFromSigma(options_.sigma),
+                                                0.5 / static_cast<double>(ids.size()));
+      colour = obstacle_hoods.empty();
+    }
+  }
+  class_of_label_.clear();
+  if (colour) {
+    class_of_label_ = colourClasses(samples_.points, samples_.labels, context_.space.metricScale(), 3 * options_.sigma);
+    // No two obstacles adjacent: still two models (one-versus-rest needs a rest).
+    bool one = true;
+    for (const auto& [label, c] : class_of_label_) one = one && c == 1;
+    if (one) class_of_label_.begin()->second = 2;
+  } else
+    for (const auto& [label, w] : weights) class_of_label_[label] = label;
+  std::vector<int> classes(kept.size());
+  for (size_t j = 0; j < kept.size(); ++j) classes[j] = class_of_label_.at(labels[j]);
   std::map<int, double> class_weights;
   for (const auto& [label, w] : weights) {
     double& cw = class_weights[class_of_label_.at(label)];
     cw = std::max(cw, w);
   }
-  const bool fk = options_.kernel == "fk";
   const robots::Robot& robot = context_.checker.robot();
   const double reach = robot.jointReach().size() > 0 ? robot.jointReach()[0] : 0.0;
   const double fk_sigma = options_.fk_sigma > 0 ? options_.fk_sigma : reach > 0 ? 0.05 * reach : 0.1;
@@ -218,7 +239,8 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
                                              fk ? &robot : nullptr,
                                              options_.training == "full"            ? OvrTraining::kFull
                                              : options_.training == "neighbourhood" ? OvrTraining::kNeighbourhood
-                                                                                    : OvrTraining::kAuto));
+                                                                                    : OvrTraining::kAuto,
+                                             obstacle_hoods.empty() ? nullptr : &obstacle_hoods));
   times.training_ms += msSince(t0);
   return "";
 }

@@ -93,7 +93,8 @@ struct SvmpOptions {
   double fk_sigma = -1;
   // One-versus-rest classes: "obstacle" (the thesis: one per obstacle and the self-collision region),
   // "colour" (obstacles whose samples come within 3 sigma share a model only if not adjacent,
-  // planners/class_colouring.hpp), "auto" (colour above 8 classes, so the thesis' cases keep theirs).
+  // planners/class_colouring.hpp), "auto" (colour above 8 classes, so the thesis' cases keep theirs,
+  // unless per-obstacle neighbourhoods are cheaper: SvmpPlanner::trainMultiSvm).
   std::string classes = "auto";
   // One-versus-rest training: "full" (the thesis' C-SVC on every sample, bias free),
   // "neighbourhood" (each class on its samples and those within the kernel's truncation radius, bias

@@ -394,6 +394,27 @@ TEST(NarrowPassage, SvmpSpreadsItsSampleBudgetOverManyObstacles) {
   EXPECT_GT(each.samples().size(), 3 * SvmpOptions::kSampleBudget / 2);
 }
 
+// `classes: auto` above 8 obstacles: one model per obstacle where their neighbourhoods together hold
+// under half of one full problem's kernel entries (sparse 3-D obstacles), colours where they cover
+// the space (200 boxes in 2-D); a file's `classes: colour` stays. Each plan is valid either way.
+TEST(NarrowPassage, SvmpTrainsPerObstacleWhereNeighbourhoodsAreSmall) {
+  auto classesOf = [](test::World& w) {
+    const auto planner = w.planner("svmp");
+    const PlanResult r = planner->solve(w.query(), 1);
+    EXPECT_TRUE(r.solved()) << r.message;
+    EXPECT_TRUE(pathIsValid(w, r.path));
+    return dynamic_cast<const SvmpPlanner&>(*planner).risk()->numClasses();
+  };
+  std::string sparse = test::readScenario("svpp_3d20_01.yaml");
+  EXPECT_EQ(classesOf(*makeWorld(sparse)), 20);
+  const size_t svmp = sparse.find("  svmp: {");
+  ASSERT_NE(svmp, std::string::npos);
+  sparse.insert(svmp + 9, "classes: colour, ");
+  EXPECT_LT(classesOf(*makeWorld(sparse)), 8);
+  auto forest = makeWorld(test::readScenario("forest_200.yaml"));
+  EXPECT_LT(classesOf(*forest), 30);
+}
+
 // Unset sigma and step follow the space's scale (1/40 of the mean range in the metric, sigma twice the
 // step); given values stay. The gap family's files give none and still thread a 1 mm gap.
 TEST(NarrowPassage, SvmpDerivesSigmaAndStepFromTheSpace) {
