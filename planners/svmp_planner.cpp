@@ -12,9 +12,9 @@
 
 #include "planners/planner_registry.hpp"
 #include "planners/class_colouring.hpp"
-#include "svm/local_one_vs_rest.hpp"
 #include "planners/roadmap_builder.hpp"
 #include "planners/tree_connect.hpp"
+#include "svm/local_one_vs_rest.hpp"
 
 namespace svmp::planners {
 
@@ -110,6 +110,21 @@ int obstacleTrees(const PlanningContext& context, const SvmpOptions& options) {
   return context.checker.environment().numReal() +
          (options.sample_self_collision && context.checker.checksSelfCollision() ? 1 : 0);
 }
+// `classes: auto` above 8 obstacles: the per-obstacle neighbourhoods (svm/local_one_vs_rest.hpp) of
+// the scaled samples when there are at most kMaxObstacleClasses and they hold under half of one full
+// problem's kernel entries, else none (colours). A colouring trains at least two models on (almost)
+// every sample, as its colours' neighbourhoods cover the space; sparse obstacles (3-D forests, an
+// arm's clutter) train faster one per obstacle (docs/reproduction.md). Beyond kMaxObstacleClasses
+// colours keep the model count bounded where obstacles are many (issue 13).
+constexpr int kMaxObstacleClasses = 64;
+std::vector<std::vector<int>> smallObstacleNeighbourhoods(const Eigen::MatrixXd& scaled, const std::vector<int>& labels,
+                                                          const std::map<int, double>& weights, double sigma) {
+  if (static_cast<int>(weights.size()) > kMaxObstacleClasses) return {};
+  std::vector<int> ids;
+  for (const auto& [label, w] : weights) ids.push_back(label);
+  return svm::classNeighbourhoods(scaled, labels, ids, svm::Kernel::rbfFromSigma(sigma),
+                                  0.5 / static_cast<double>(ids.size()));
+}
 }  // namespace
 
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
@@ -194,25 +209,14 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   }
   const bool fk = options_.kernel == "fk";
   // Classes: one per obstacle, or colours of the obstacles' adjacency graph (weight: the largest of
-  // the colour's obstacles, so no obstacle's penalty drops). `auto` keeps one per obstacle up to 8,
-  // and up to kMaxObstacleClasses while their neighbourhoods (svm/local_one_vs_rest.hpp) hold under
-  // half of one full problem's kernel entries: a colouring trains at least two full problems (its
-  // colours' neighbourhoods cover the space), and sparse obstacles (3-D forests, an arm's clutter)
-  // then train faster per obstacle (docs/reproduction.md). Beyond kMaxObstacleClasses colours keep
-  // the model count bounded, as issue 13 asks where obstacles are many.
-  constexpr int kMaxObstacleClasses = 64;
+  // the colour's obstacles, so no obstacle's penalty drops).
   std::vector<std::vector<int>> obstacle_hoods;
   bool colour = options_.classes == "colour";
   if (options_.classes == "auto" && weights.size() > 8) {
-    colour = true;
-    if (!fk && options_.training != "full" && static_cast<int>(weights.size()) <= kMaxObstacleClasses) {
-      std::vector<int> ids;
-      for (const auto& [label, w] : weights) ids.push_back(label);
-      obstacle_hoods = svm::classNeighbourhoods(context_.space.metricScale().asDiagonal() * points, labels, ids,
-                                                svm::Kernel::rbfFromSigma(options_.sigma),
-                                                0.5 / static_cast<double>(ids.size()));
-      colour = obstacle_hoods.empty();
-    }
+    if (!fk && options_.training != "full")
+      obstacle_hoods = smallObstacleNeighbourhoods(context_.space.metricScale().asDiagonal() * points, labels,
+                                                   weights, options_.sigma);
+    colour = obstacle_hoods.empty();
   }
   class_of_label_.clear();
   if (colour) {
