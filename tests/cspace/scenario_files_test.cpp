@@ -1,10 +1,12 @@
-// Every scenario in bench/scenarios/ loads, its queries are collision-free at both ends, and a witness
-// path, when given, is collision-free at a quarter of the checking resolution. The directory is read
-// at run time, so files added later are covered without touching this test.
+// Every scenario in bench/scenarios/, bench/heldout/ and bench/unseen/ loads, its queries are
+// collision-free at both ends, and a witness path, when given, is collision-free at a quarter of the
+// checking resolution. The directories are read at run time, so files added later are covered
+// without touching this test.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <string>
 
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
@@ -15,8 +17,9 @@ namespace {
 
 std::vector<std::filesystem::path> scenarioFiles() {
   std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(SVMP_SOURCE_DIR "/bench/scenarios"))
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path());
+  for (const char* dir : {"/bench/scenarios", "/bench/heldout", "/bench/unseen"})
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(SVMP_SOURCE_DIR) + dir))
+      if (entry.path().extension() == ".yaml") files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;
 }
