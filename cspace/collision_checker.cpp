@@ -151,10 +151,7 @@ CollisionChecker::Workspace& CollisionChecker::workspace() const {
 void CollisionChecker::placeRobot(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q) const {
   robot_->linkPoses(q, ws.poses);
   for (int i = 0; i < robot_->numLinks(); ++i)
-    for (Placed& part : ws.parts[i]) {
-      part.place(ws.poses[i] * part.shape->pose);
-      if (ws.manager) part.fclObject();  // the broadphase tree reads FCL's AABB
-    }
+    for (Placed& part : ws.parts[i]) part.place(ws.poses[i] * part.shape->pose);
 }
 
 namespace {
@@ -228,7 +225,7 @@ int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool
     for (Placed& part : ws.parts[i]) {
       if (ws.manager) {
         BroadphaseQuery query{include_virtual, env_.get(), &part, &ws.obstacle_parts, lowest};
-        ws.manager->collide(part.object, &query, lowestHitCallback);
+        ws.manager->collide(part.fclObject(), &query, lowestHitCallback);  // the tree reads FCL's AABB
         lowest = query.lowest;
         continue;
       }
