@@ -1,6 +1,5 @@
 #include "cspace/collision_checker.hpp"
 
-#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
@@ -17,11 +16,12 @@
 #include <unordered_map>
 
 #include "cspace/convex_distance.hpp"
+#include "cspace/obstacle_grid.hpp"
 
 namespace svmp::cspace {
 namespace {
 
-// Above this many obstacles the broadphase tree beats testing AABBs one by one.
+// Above this many obstacles the broadphase grid beats testing bounding boxes one by one.
 constexpr size_t kBroadphaseThreshold = 8;
 
 std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const robots::Shape& s) {
@@ -71,13 +71,17 @@ struct CollisionChecker::Workspace {
   std::vector<std::vector<Placed>> parts;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> obstacles;  // index = id - 1
   std::vector<Placed> obstacle_parts;                              // index = id - 1
-  std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager;  // all obstacles, when many
 };
 
 CollisionChecker::CollisionChecker(std::shared_ptr<const robots::Robot> robot,
                                    std::shared_ptr<const Environment> env, bool self_collision)
     : robot_(std::move(robot)), env_(std::move(env)), instance_id_(next_instance_id++) {
   if (!robot_ || !env_) throw std::invalid_argument("collision checker: robot and environment required");
+  if (env_->obstacles().size() > kBroadphaseThreshold) {
+    std::vector<Eigen::AlignedBox3d> boxes;  // index = id - 1
+    for (const auto& o : env_->obstacles()) boxes.push_back(o.shape.boundsAt(o.shape.pose));
+    grid_ = std::make_unique<const ObstacleGrid>(boxes);
+  }
   if (!self_collision) return;
   // Drop pairs that touch in every sampled configuration: they are joined by construction.
   auto candidates = robot_->nonAdjacentLinkPairs();
@@ -124,11 +128,6 @@ std::unique_ptr<CollisionChecker::Workspace> CollisionChecker::makeWorkspace() c
     part.object_placed = true;
     ws->obstacle_parts.push_back(part);
     ws->obstacles.push_back(std::move(obj));
-  }
-  if (ws->obstacles.size() > kBroadphaseThreshold) {
-    ws->manager = std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
-    for (auto& obj : ws->obstacles) ws->manager->registerObject(obj.get());
-    ws->manager->setup();
   }
   return ws;
 }
@@ -192,25 +191,6 @@ bool CollisionChecker::linksCollide(Workspace& ws, int a, int b) const {
 
 namespace {
 
-struct BroadphaseQuery {
-  bool include_virtual;
-  const Environment* env;
-  Placed* part;  // the link part (its FCL object carries no user data)
-  std::vector<Placed>* obstacles;
-  int lowest = std::numeric_limits<int>::max();
-};
-
-bool lowestHitCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
-  auto* query = static_cast<BroadphaseQuery*>(data);
-  // One of the two is the obstacle; link objects carry no user data.
-  if (!a->getUserData()) std::swap(a, b);
-  const int id = static_cast<int>(reinterpret_cast<intptr_t>(a->getUserData()));
-  if (id >= query->lowest) return false;
-  if (!query->include_virtual && query->env->byId(id).is_virtual) return false;
-  if (shapesCollide(*query->part, (*query->obstacles)[id - 1])) query->lowest = id;
-  return false;  // keep going: the lowest id wins
-}
-
 }  // namespace
 
 int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const {
@@ -223,10 +203,12 @@ int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool
   int lowest = std::numeric_limits<int>::max();
   for (int i = 0; i < robot_->numLinks(); ++i) {
     for (Placed& part : ws.parts[i]) {
-      if (ws.manager) {
-        BroadphaseQuery query{include_virtual, env_.get(), &part, &ws.obstacle_parts, lowest};
-        ws.manager->collide(part.fclObject(), &query, lowestHitCallback);  // the tree reads FCL's AABB
-        lowest = query.lowest;
+      if (grid_) {
+        grid_->forEachCandidate(part.box, [&](int index) {
+          const Obstacle& o = env_->obstacles()[index];
+          if (o.id < lowest && (include_virtual || !o.is_virtual) && pairCollides(part, ws.obstacle_parts[index]))
+            lowest = o.id;
+        });
         continue;
       }
       for (const auto& o : env_->obstacles()) {

@@ -22,6 +22,8 @@
 
 namespace svmp::cspace {
 
+class ObstacleGrid;
+
 class CollisionChecker final : public ValidityChecker {
  public:
   // Non-adjacent link pairs that touch in every one of 100 seeded random configurations (links joined
@@ -70,6 +72,7 @@ class CollisionChecker final : public ValidityChecker {
 
   std::shared_ptr<const robots::Robot> robot_;
   std::shared_ptr<const Environment> env_;
+  std::unique_ptr<const ObstacleGrid> grid_;  // the broadphase, over many obstacles
   std::vector<std::pair<int, int>> self_pairs_;
   std::uint64_t instance_id_;
   mutable std::mutex workspaces_mutex_;

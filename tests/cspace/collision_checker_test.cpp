@@ -170,7 +170,7 @@ TEST(CollisionCheckerTest, DhArmsAreNotSelfCollidingInNormalPoses) {
 }
 
 TEST(CollisionCheckerTest, BroadphaseAgreesWithPerObstacleTests) {
-  // 14 obstacles (> 8) go through FCL's broadphase tree; hits() tests each obstacle on its own.
+  // 14 obstacles (> 8) go through the broadphase grid; hits() tests each obstacle on its own.
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> coord(-2.5, 2.5), size(0.05, 0.3);
   std::vector<Obstacle> obstacles;

@@ -1,6 +1,7 @@
 // Collision checks per robot against a few obstacles (thesis Fig 4.4 style for the planar arms),
 // clearance and straight-line motion validation. Random configurations within the joint limits.
 #include <benchmark/benchmark.h>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/narrowphase/collision.h>
@@ -14,6 +15,7 @@
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/convex_distance.hpp"
 #include "cspace/motion_validator.hpp"
+#include "cspace/obstacle_grid.hpp"
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
 #include "robots/point_robot.hpp"
@@ -39,7 +41,22 @@ struct World {
   std::shared_ptr<const Environment> env;
 };
 
+// An arm among 60 cubes of 6-8 cm around its base (as bench/unseen/*_clutter*): the broadphase's case.
+std::vector<Obstacle> clutter(int count) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<Obstacle> boxes;
+  while (static_cast<int>(boxes.size()) < count) {
+    const double r = 0.3 + 0.4 * unit(rng), a = 2 * kPi * unit(rng), side = 0.06 + 0.02 * unit(rng);
+    boxes.push_back(box(Eigen::Vector3d::Constant(side), {r * std::cos(a), r * std::sin(a), 0.05 + 0.85 * unit(rng)}));
+  }
+  return boxes;
+}
+
 World makeWorld(const std::string& name) {
+  if (name == "panda_clutter")
+    return {std::make_shared<svmp::robots::DhArm>(svmp::robots::pandaSpec()),
+            std::make_shared<Environment>(clutter(60))};
   if (name == "point2d") {
     return {std::make_shared<svmp::robots::PointRobot>(Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 10)),
             std::make_shared<Environment>(std::vector<Obstacle>{
@@ -199,6 +216,7 @@ BENCHMARK_CAPTURE(BM_CollisionCheck, planar5, "planar5");
 BENCHMARK_CAPTURE(BM_CollisionCheck, planar6, "planar6");
 BENCHMARK_CAPTURE(BM_CollisionCheck, crs_f3, "crs_f3");
 BENCHMARK_CAPTURE(BM_CollisionCheck, panda, "panda");
+BENCHMARK_CAPTURE(BM_CollisionCheck, panda_clutter, "panda_clutter");
 BENCHMARK_CAPTURE(BM_Clearance, planar6, "planar6");
 BENCHMARK_CAPTURE(BM_Clearance, panda, "panda");
 BENCHMARK_CAPTURE(BM_SampledSegment, point2d, "point2d");
@@ -207,5 +225,59 @@ BENCHMARK_CAPTURE(BM_SampledSegment, panda, "panda");
 BENCHMARK_CAPTURE(BM_CertifiedSegment, point2d, "point2d");
 BENCHMARK_CAPTURE(BM_CertifiedSegment, planar6, "planar6");
 BENCHMARK_CAPTURE(BM_CertifiedSegment, panda, "panda");
+
+// The broadphase alone, FCL's dynamic AABB tree (the checker's until the twenty-first session) against
+// our grid (cspace/obstacle_grid.hpp): the candidates of a link-sized box among 60 small cubes, the
+// boxes placed where the Panda's parts are at random configurations. Both report the same boxes
+// (`candidates` per query: the tree's are exact overlaps, the grid's a superset).
+void BM_Broadphase(benchmark::State& state, bool grid) {
+  const auto obstacles = clutter(60);
+  std::vector<Eigen::AlignedBox3d> boxes;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+  for (const auto& o : obstacles) {
+    boxes.push_back(o.shape.boundsAt(o.shape.pose));
+    objects.push_back(std::make_unique<fcl::CollisionObjectd>(
+        std::make_shared<fcl::Boxd>(o.shape.dims.x(), o.shape.dims.y(), o.shape.dims.z()), o.shape.pose.linear(),
+        o.shape.pose.translation()));
+    objects.back()->computeAABB();
+    manager.registerObject(objects.back().get());
+  }
+  manager.setup();
+  const svmp::cspace::ObstacleGrid obstacle_grid(boxes);
+  // Query boxes: the Panda's parts at 256 random configurations.
+  const svmp::robots::DhArm panda(svmp::robots::pandaSpec());
+  const Eigen::MatrixXd q = randomConfigurations(panda, 256);
+  std::vector<Eigen::AlignedBox3d> queries;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> parts;
+  svmp::robots::Poses poses;
+  for (int j = 0; j < q.cols(); ++j) {
+    panda.linkPoses(q.col(j), poses);
+    for (int l = 0; l < panda.numLinks(); ++l)
+      for (const Shape& s : panda.linkShapes(l)) {
+        const Eigen::Isometry3d at = poses[l] * s.pose;
+        queries.push_back(s.boundsAt(at));
+        parts.push_back(std::make_unique<fcl::CollisionObjectd>(
+            std::make_shared<fcl::Capsuled>(s.dims.x(), s.dims.y()), at.linear(), at.translation()));
+        parts.back()->computeAABB();
+      }
+  }
+  long found = 0, i = 0;
+  auto count = [](fcl::CollisionObjectd*, fcl::CollisionObjectd*, void* n) {
+    ++*static_cast<long*>(n);
+    return false;
+  };
+  for (auto _ : state) {
+    const size_t k = static_cast<size_t>(i++) % queries.size();
+    if (grid)
+      obstacle_grid.forEachCandidate(queries[k], [&](int b) { found += boxes[b].intersects(queries[k]); });
+    else
+      manager.collide(parts[k].get(), &found, count);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["candidates"] = static_cast<double>(found) / state.iterations();
+}
+BENCHMARK_CAPTURE(BM_Broadphase, fcl_tree, false);
+BENCHMARK_CAPTURE(BM_Broadphase, grid, true);
 
 BENCHMARK_MAIN();
