@@ -38,8 +38,7 @@ std::atomic<std::uint64_t> next_instance_id{1};
 
 // A shape where it stands. Its world pose and bounding box are kept here, so that pairs are culled
 // inline: FCL's AABB tests are calls into its shared library, a third of a check of the Panda among
-// 8 boards. Its FCL object is placed only when FCL is asked: by the broadphase tree, or for a pair
-// our GJK leaves undecided.
+// 8 boards. Its FCL object is placed only when FCL is asked: for a pair our GJK leaves undecided.
 struct Placed {
   const robots::Shape* shape = nullptr;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -120,7 +119,6 @@ std::unique_ptr<CollisionChecker::Workspace> CollisionChecker::makeWorkspace() c
     auto obj = std::make_unique<fcl::CollisionObjectd>(makeGeometry(o.shape), o.shape.pose.linear(),
                                                        o.shape.pose.translation());
     obj->computeAABB();
-    obj->setUserData(reinterpret_cast<void*>(static_cast<intptr_t>(o.id)));
     Placed part;
     part.shape = &o.shape;
     part.object = obj.get();
@@ -188,10 +186,6 @@ bool CollisionChecker::linksCollide(Workspace& ws, int a, int b) const {
       if (pairCollides(pa, pb)) return true;
   return false;
 }
-
-namespace {
-
-}  // namespace
 
 int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const {
   // A wrong size would read past the limit vectors and the FK loops; NaN is left to withinLimits.

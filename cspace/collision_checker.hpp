@@ -2,9 +2,9 @@
 // The exact validity checker: FCL primitives (cspace/validity_checker.hpp has the contract). The thesis'
 // IsCollidingWith (ch. 4.3.2) returns the id of the obstacle the robot hits, 0 when free; joint limits
 // and self-collision (IsMeetingConstraints) have ids of their own. Pairs are culled by the shapes'
-// bounding boxes, kept here (FCL's broadphase tree beyond 8 obstacles); each pair left is decided by
-// our GJK (cspace/convex_distance.hpp, intersects), FCL's narrow phase only where that run cannot
-// decide. Where the two differ, the shapes overlap by under a micrometre and FCL's GJK
+// bounding boxes, kept here (through a grid beyond 8 obstacles, cspace/obstacle_grid.hpp); each pair
+// left is decided by our GJK (cspace/convex_distance.hpp, intersects), FCL's narrow phase only where
+// that run cannot decide. Where the two differ, the shapes overlap by under a micrometre and FCL's GJK
 // tolerance misses it (docs/benchmarks.md). Every configuration tested is counted in collision_checks;
 // every distance query (clearance, certified motion validation) in distance_queries.
 //

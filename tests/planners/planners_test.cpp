@@ -407,9 +407,10 @@ TEST(NarrowPassage, SvmpTrainsPerObstacleWhereNeighbourhoodsAreSmall) {
   };
   std::string sparse = test::readScenario("svpp_3d20_01.yaml");
   EXPECT_EQ(classesOf(*makeWorld(sparse)), 20);
-  const size_t svmp = sparse.find("  svmp: {");
-  ASSERT_NE(svmp, std::string::npos);
-  sparse.insert(svmp + 9, "classes: colour, ");
+  const std::string svmp_params = "  svmp: {";
+  const size_t at = sparse.find(svmp_params);
+  ASSERT_NE(at, std::string::npos);
+  sparse.insert(at + svmp_params.size(), "classes: colour, ");
   EXPECT_LT(classesOf(*makeWorld(sparse)), 8);
   auto forest = makeWorld(test::readScenario("forest_200.yaml"));
   EXPECT_LT(classesOf(*forest), 30);
