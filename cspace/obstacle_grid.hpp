@@ -10,6 +10,7 @@
 //
 // Thread safety: immutable after construction; every const method may be called from many threads.
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <vector>
 

@@ -36,7 +36,8 @@ struct SvmpOptions {
   // all, then kSampleBudget / trees, at least kMinSamplesPerTree (resolvedFor). Then the samples, and
   // the training that grows faster than they do, stop growing with the obstacle count: arms among
   // 30-60 small boxes trained for 113-152 ms on 200 a tree, 12-14 ms on 39-77 a tree, at the same
-  // success (docs/reproduction.md, "An arm in clutter").
+  // success, with colour classes (docs/reproduction.md, "An arm in clutter"; one model per obstacle
+  // has since cut that to 2-4 ms).
   static constexpr int kSamplesPerTree = 200, kSampleBudget = 2400, kMinSamplesPerTree = 20;
   int samples_per_tree = static_cast<int>(kDerived);
   int k = 10;                     // roadmap neighbours
