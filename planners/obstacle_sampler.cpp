@@ -161,8 +161,10 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
   Eigen::VectorXd q_rand(space.dim());
   const long max_iterations = static_cast<long>(options.max_iterations_factor) * n;
   long iteration = 0, idle = 0;
-  const auto idle_limit = [&] { return options.max_idle_factor * std::max<long>(20, std::ssize(tree.nodes)); };
-  while (static_cast<int>(tree.nodes.size()) < n && iteration++ < max_iterations && idle++ < idle_limit()) {
+  const auto limit = [&](int factor) { return factor * std::max<long>(20, std::ssize(tree.nodes)); };
+  const auto thin = [&] { return options.max_expansions_per_node > 0 && iteration > limit(options.max_expansions_per_node); };
+  while (static_cast<int>(tree.nodes.size()) < n && iteration++ < max_iterations &&
+         idle++ < limit(options.max_idle_factor) && !thin()) {
     if (stopRequested(options, iteration)) {
       tree.stopped = true;
       return tree;
@@ -196,7 +198,9 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
     std::ostringstream w;
     w << "obstacle '" << obstacle.name << "': tree stopped at " << tree.nodes.size() << " of " << n
       << " samples after " << iteration << " expansions ("
-      << (iteration > max_iterations ? "the limit" : "the last " + std::to_string(idle - 1) + " added nothing")
+      << (iteration > max_iterations ? "the limit"
+          : thin() ? "a thin region: under one node per " + std::to_string(options.max_expansions_per_node) + " expansions"
+                   : "the last " + std::to_string(idle - 1) + " added nothing")
       << ")";
     tree.warning = w.str();
   }
@@ -210,6 +214,7 @@ std::string ObstacleSamplerOptions::validate() const {
   if (!(step > 0) || !std::isfinite(step)) err << "step must be positive, got " << step;
   else if (samples_per_tree < 1) err << "samples_per_tree must be >= 1, got " << samples_per_tree;
   else if (max_root_attempts < 1) err << "max_root_attempts must be >= 1";
+  else if (max_expansions_per_node < 0) err << "max_expansions_per_node must be >= 0, got " << max_expansions_per_node;
   return err.str();
 }
 

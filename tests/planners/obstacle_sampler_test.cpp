@@ -57,6 +57,7 @@ TEST(ObstacleSampler, SamplesHitTheirObstacleAndTreesAreFull) {
   // Algorithm 1's N nodes per tree: the ball (3% of the space) stalls at 20 nodes under the
   // default stall limit of 2 x max(20, nodes) idle expansions, since few targets fall near it.
   opt.max_idle_factor = 50;
+  opt.max_expansions_per_node = 0;
   const auto s = planners::sampleObstacles(w->checker, w->space, opt, 21, 1);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
   ASSERT_EQ(s.tree_sizes.size(), 3u);
@@ -103,6 +104,36 @@ TEST(ObstacleSampler, AFullTreeStopsGrowing) {
   // Each idle expansion is one check; the limit would be 50 x 200 of them.
   EXPECT_LT(checks, 10u * static_cast<std::uint64_t>(opt.samples_per_tree) + 100u * s.tree_sizes[0]);
   EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
+}
+
+// A wall a third of a step thick, in a space where most uniform targets lie across it: most
+// expansions leave it, and each new boundary node restarts the idle count, so without the per-node
+// limit the tree goes on at about 35 checks a node (10.5k for 300). With it the tree stops, says
+// why, and has spent at most max_expansions_per_node expansions a node.
+TEST(ObstacleSampler, AThinTreeStopsAtItsExpansionsPerNode) {
+  auto w = makeWorld(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [2, 10]}}\n"
+      "obstacles:\n"
+      "  - {name: wall, shape: box, size: [0.03, 8, 1.0], position: [1, 5, 0], sample: [1, 5]}\n"
+      "start: [0.5, 1]\n"
+      "goal: [1.5, 9]\n"
+      "resolution: 0.005\n");
+  planners::ObstacleSamplerOptions opt;
+  opt.step = 0.1;
+  opt.samples_per_tree = 300;
+  const auto [thin, thin_checks] = sampleCountingChecks(*w, opt, 5);
+  ASSERT_EQ(thin.warnings.size(), 1u);
+  EXPECT_NE(thin.warnings[0].find("thin region"), std::string::npos) << thin.warnings[0];
+  EXPECT_TRUE(everySampleHitsItsObstacle(*w, thin));
+  const int nodes = thin.tree_sizes[0];
+  EXPECT_GT(nodes, 20);
+  // Expansions (one check each) plus a bisection (log2(step / (step / 256)) = 8 checks) per
+  // boundary node.
+  EXPECT_LE(thin_checks, static_cast<std::uint64_t>(opt.max_expansions_per_node * nodes + 1 + 8 * thin.numBoundary()));
+  opt.max_expansions_per_node = 0;
+  const auto [full, full_checks] = sampleCountingChecks(*w, opt, 5);
+  EXPECT_GT(full.tree_sizes[0], nodes);
+  EXPECT_GT(full_checks, 2 * thin_checks);
 }
 
 TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
