@@ -4,7 +4,8 @@
 // or found by uniform sampling: one shared stream of draws serves every obstacle, since a check names
 // the obstacle a draw hits), grown towards uniform random configurations by a fixed step in the
 // weighted metric. q_new joins the tree when it hits the same obstacle; otherwise the node it grew from,
-// q_expansion, is marked a boundary sample and q_new is dropped. Each tree stops at N nodes (or when it stalls: max_idle_factor).
+// q_expansion, is marked a boundary sample and q_new is dropped. Each tree stops at N nodes (or when it
+// stalls, max_idle_factor, or is thinner than the step, max_expansions_per_node).
 // Surface refinement (on by default; the thesis' own future direction, ch. 3.5: "sampling methods that
 // focus on boundary samples"): the first time a node is marked boundary, the segment from it to the free
 // q_new is bisected down to refine_tolerance and the last colliding point joins the tree as a boundary
