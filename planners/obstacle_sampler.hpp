@@ -44,7 +44,7 @@ struct ObstacleSamplerOptions {
   int max_idle_factor = 2;
   // ... or when it is thin: more than factor * max(20, nodes) expansions in all. A C-obstacle thinner
   // than the step (a wall, a pillar, an arm's self-collision region) sends most expansions out, and
-  // each new boundary node restarts the idle count, so such a tree went on at one node per 15-30
+  // each new boundary node restarts the idle count, so such a tree went on at one node per 15-35
   // expansions (panda_shelf's self-collision tree: 6,232 expansions and 1,041 bisection checks for
   // its 400 nodes, against 470-690 expansions for each board's). 0 turns the limit off.
   int max_expansions_per_node = 8;
