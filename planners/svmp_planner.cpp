@@ -37,6 +37,8 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.lazy_trees = static_cast<int>(params.getInt("lazy_trees", o.lazy_trees, 0, 1000000));
   o.tree_range = params.getDouble("tree_range", o.tree_range, -1, 1e6);
   o.interior_fraction = params.getDouble("interior_fraction", o.interior_fraction, 0, 1);
+  o.tree_expansions_per_node =
+      static_cast<int>(params.getInt("tree_expansions_per_node", o.tree_expansions_per_node, 0, 1000000));
   o.centre_in_passage = params.getBool("centre_in_passage", o.centre_in_passage);
   o.defer_centring = params.getBool("defer_centring", o.defer_centring);
   o.sample_self_collision = params.getBool("sample_self_collision", o.sample_self_collision);
@@ -53,9 +55,9 @@ std::string SvmpOptions::validate() const {
   if (!(C > 0) || !std::isfinite(C)) return "C must be positive, got " + std::to_string(C);
   if (!positiveOrDerived(step)) return "step must be positive, got " + std::to_string(step);
   if ((samples_per_tree < 1 && samples_per_tree != kDerived) || k < 1 || descent_iterations < 1 ||
-      repair_samples < 2 || repair_rounds < 0 || lazy_trees < 0)
+      repair_samples < 2 || repair_rounds < 0 || lazy_trees < 0 || tree_expansions_per_node < 0)
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2, "
-           "repair_rounds and lazy_trees >= 0)";
+           "repair_rounds, lazy_trees and tree_expansions_per_node >= 0)";
   if (!positiveOrDerived(tree_range)) return "tree_range must be positive, got " + std::to_string(tree_range);
   if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
   if (kernel != "rbf" && kernel != "fk") return "kernel must be rbf or fk, got " + kernel;
@@ -159,6 +161,7 @@ bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Te
   opt.step = options_.step;
   opt.samples_per_tree = options_.samples_per_tree;
   opt.include_self_collision = options_.sample_self_collision;
+  opt.max_expansions_per_node = options_.tree_expansions_per_node;
   // Surfaces located to a quarter of the checking resolution: finer than any passage the motion
   // validator can tell apart, coarse enough to cost a few bisection checks per boundary node.
   opt.refine_tolerance = context_.validator.resolution() / 4;

@@ -80,6 +80,9 @@ struct SvmpOptions {
   // time; 0.1 cut panda_shelf's training from 45% to 21% of its time at the same success (Fig 4.4:
   // 10 -> 15 of 20; docs/reproduction.md), 0-0.1 measured alike.
   double interior_fraction = 0.1;
+  // An obstacle tree thinner than the step stops after this many expansions a node
+  // (planners::ObstacleSamplerOptions::max_expansions_per_node); 0: the thesis' trees, which grow on.
+  int tree_expansions_per_node = ObstacleSamplerOptions{}.max_expansions_per_node;
   bool centre_in_passage = true;  // see SvmpPlanner::centreAlongNormal
   // With lazy edges, the build's descent ends that collide are centred when a query first fails on
   // the lazy roadmap, and linked lazily, not while building: centring was 2/3 of the milestone phase

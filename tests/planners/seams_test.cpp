@@ -194,6 +194,13 @@ TEST(Seams, RegistryDefaultsAreTheOptionStructsDefaults) {
   EXPECT_EQ(o.descent().max_step, 0.37);
   o.descent_step = 0.01;
   EXPECT_EQ(o.descent().max_step, 0.01);
+  // The thin-tree limit is a switch like the other departures from the thesis: 0 turns it off.
+  EXPECT_EQ(SvmpOptions::fromParameters(cspace::ParameterSet("t.yaml", "planners.svmp.", {{"tree_expansions_per_node", "0"}}))
+                .tree_expansions_per_node,
+            0);
+  EXPECT_THROW(SvmpOptions::fromParameters(
+                   cspace::ParameterSet("t.yaml", "planners.svmp.", {{"tree_expansions_per_node", "-1"}})),
+               cspace::ScenarioError);
 }
 
 }  // namespace
