@@ -71,8 +71,6 @@ RiskFunction RiskFunction::trainOneVsRest(const Eigen::MatrixXd& configurations,
     return RiskFunction(std::move(ovr.models), std::move(ovr.classes), scale, truncated, fk);
   }
   const std::vector<int> classes = svm::oneVsRestClasses(features, labels, C, class_weight, threads, "trainOneVsRest");
-  if (neighbourhoods && neighbourhoods->size() != classes.size())
-    throw std::invalid_argument("trainOneVsRest: one neighbourhood per class needed");
   const bool forced = training == OvrTraining::kNeighbourhood || neighbourhoods;
   std::vector<std::vector<int>> computed;
   if (!neighbourhoods)
