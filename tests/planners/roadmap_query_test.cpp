@@ -371,6 +371,14 @@ TEST(RoadmapQuery, SvmpTriesSmallTreesBeforeTheDeferredCentring) {
   EXPECT_GE(before_centring, 2);
 }
 
+// panda_shelf's planner with 400 samples a tree (the file's count until the twenty-third session),
+// whose roadmap the next two tests' seeds were chosen on.
+std::unique_ptr<Planner> pandaShelfSvmp400(const test::World& w) {
+  cspace::ParameterSet params = w.scenario.paramsFor("svmp");
+  params.set("samples_per_tree", "400");
+  return makePlanner("svmp", w.context, params);
+}
+
 // Random queries on one roadmap (panda_shelf, as svmp-plan --queries 60 --seed 2): every query the
 // roadmap does not answer tries the trees before any repair round, not only the build's first. More
 // than one query is answered by trees, certified and free when re-checked finely; the trees' nodes
@@ -378,7 +386,7 @@ TEST(RoadmapQuery, SvmpTriesSmallTreesBeforeTheDeferredCentring) {
 TEST(RoadmapQuery, SvmpTriesTreesAtEveryQueryTheRoadmapDoesNotAnswerAndKeepsTheirNodes) {
   auto w = makeWorld(test::readScenario("panda_shelf.yaml"));
   w->certify();
-  auto planner = w->planner("svmp");
+  auto planner = pandaShelfSvmp400(*w);
   const auto& svmp = dynamic_cast<const SvmpPlanner&>(*planner);
   ASSERT_TRUE(planner->build(2).solved());
   int by_trees = 0;
@@ -401,15 +409,15 @@ TEST(RoadmapQuery, SvmpTriesTreesAtEveryQueryTheRoadmapDoesNotAnswerAndKeepsThei
 }
 
 // Trees that join the start's and the goal's components where the path between them crosses a lazy
-// edge that is blocked grow on from the components left (panda_shelf, as svmp-plan --queries 100
-// --seed 1): the first query the lazy roadmap does not answer (its 6th) is answered by trees, certified
+// edge that is blocked grow on from the components left (panda_shelf, 400 samples a tree, as svmp-plan
+// --queries 100 --seed 1): the first query the lazy roadmap does not answer (its 6th) is answered by trees, certified
 // and free when re-checked finely, with the build's centring still pending and no eager pass. Trees
 // that stopped at their first join left it to the centring and the eager pass (22.9k checks, against
 // RRTConnect's 1.5k).
 TEST(RoadmapQuery, SvmpTreesGrowOnWhenTheirJoinCrossesABlockedLazyEdge) {
   auto w = makeWorld(test::readScenario("panda_shelf.yaml"));
   w->certify();
-  auto planner = w->planner("svmp");
+  auto planner = pandaShelfSvmp400(*w);
   const auto& svmp = dynamic_cast<const SvmpPlanner&>(*planner);
   ASSERT_TRUE(planner->build(1).solved());
   const int pending = svmp.pendingCentring();
