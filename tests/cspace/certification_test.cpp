@@ -242,6 +242,31 @@ TEST(Certification, ALinkThatDoesNotMoveNeedsNoBisectionNearAnObstacle) {
   EXPECT_FALSE(certified.isValid(a, Eigen::Vector3d(-0.05, 0, 0)));
 }
 
+// A segment that slides along a face: at 1 mm clearance it is proven (a few hundred queries); at a
+// micrometre it would take about a million, so the proof stops at kMaxDistanceQueries as not valid,
+// though the segment is free.
+TEST(Certification, AGrazingSegmentIsNotProvenAndCostsAtMostTheQueryCap) {
+  const auto robot = std::make_shared<robots::PointRobot>(Eigen::Vector2d(-5, -5), Eigen::Vector2d(5, 5));
+  const auto env = std::make_shared<Environment>(std::vector<Obstacle>{box({2, 1, 1}, {0, 0, 0})});
+  const CollisionChecker checker(robot, env);
+  const ConfigurationSpace space(Eigen::Vector2d(-5, -5), Eigen::Vector2d(5, 5), Eigen::Vector2d(1, 1));
+  const auto slide = [&](double clearance, std::uint64_t& queries) {
+    const CertifiedMotionValidator certified(checker, space, 0.01);
+    const double y = 0.5 + clearance;  // the face y = 0.5 plus the robot's radius
+    const bool proven = certified.isValid(Eigen::Vector2d(-1, y), Eigen::Vector2d(1, y));
+    queries = certified.distanceQueries();
+    return proven;
+  };
+  std::uint64_t near = 0, grazing = 0;
+  EXPECT_TRUE(slide(1e-3, near));
+  EXPECT_LT(near, 5000u);
+  EXPECT_FALSE(slide(2e-6, grazing));
+  EXPECT_GE(grazing, static_cast<std::uint64_t>(CertifiedMotionValidator::kMaxDistanceQueries));
+  EXPECT_LE(grazing, static_cast<std::uint64_t>(CertifiedMotionValidator::kMaxDistanceQueries) + 2);
+  EXPECT_TRUE(DiscreteMotionValidator(checker, space, 1e-3).isValid(Eigen::Vector2d(-1, 0.5 + 2e-6),
+                                                                   Eigen::Vector2d(1, 0.5 + 2e-6)));
+}
+
 // FCL's libccd GJK overestimates some distances (box-capsule by millimetres); freeDistance and
 // clearance must not: against the exact box-capsule distance (min over the capsule's axis of the
 // convex point-box distance, minus the radius) they are never larger, and they stay close
