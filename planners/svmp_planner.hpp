@@ -197,7 +197,7 @@ class SvmpPlanner final : public Planner {
   std::optional<Eigen::VectorXd> centreAlongNormal(int k, const Eigen::VectorXd& q) const;
   // RRT-Connect trees of up to `samples` samples on the query roadmap: true, with result's path, when
   // they join the start's and the goal's components and a path between them holds its proofs (a join
-  // whose path fails grows on, up to as many samples again as it took).
+  // whose path fails grows on, up to as many samples again as it took, at least a tenth of `samples`).
   bool joinByTrees(Roadmap& with_query, int start_node, int goal_node, int samples, cspace::Rng& rng,
                    const Termination& stop, PlanResult& result);
   // Adds the query roadmap's nodes from `first` on (after the milestones and the query's ends) to the
