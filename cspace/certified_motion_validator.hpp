@@ -11,9 +11,9 @@
 // than `tolerance` to contact, or more than kMaxDistanceQueries queries for one segment, ends the
 // proof as not valid (never valid unless proven). The query cap bounds what a grazing segment costs:
 // covering length at clearance d takes about L_k / (2 d) queries, so 10,000 reject a segment that
-// slides along an obstacle within about a tenth of a millimetre (arm links, L_k ~ 1 m), and on the 73
-// bench files (20 seeds each) one proof of 1,460 runs needed more: 64k queries and 87 ms
-// (panda_shelf, seed 13), where the next-most needed 3.3k. FCL's continuous collision (conservative
+// slides along an obstacle within about a tenth of a millimetre (arm links, L_k ~ 1 m). Over the 73
+// bench files, 20 seeds each, one proof needed more (panda_shelf seed 13: 64k queries, 87 ms); the
+// next-largest needed 3.3k. FCL's continuous collision (conservative
 // advancement) would do the same for single bodies, but not for an articulated chain with
 // self-collision pairs, and it costs more per query; see docs/architecture.md. Each call counts one
 // local planner call here; each distance query one distance query in the exact checker.

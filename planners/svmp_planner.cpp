@@ -305,7 +305,8 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
     const TreeConnectResult grown =
         connectByTrees(with_query, with_query.component(start_node), with_query.component(goal_node), context_,
                        options_.tree_range, left, rng, stop);
-    left = std::min(left - grown.samples - 1, std::max(grown.samples + 1, samples / 10));  // the joining sample counts
+    // The joining sample counts too.
+    left = std::min(left - grown.samples - 1, std::max(grown.samples + 1, samples / 10));
     if (!grown.connected) return false;
     // The trees' nodes are linked lazily to their k nearest milestones, as the lazy roadmap's own: the
     // search then leaves the trees' detours where a milestone offers a shorter way (paths 9-28% shorter

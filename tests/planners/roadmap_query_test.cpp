@@ -409,11 +409,11 @@ TEST(RoadmapQuery, SvmpTriesTreesAtEveryQueryTheRoadmapDoesNotAnswerAndKeepsThei
 }
 
 // Trees that join the start's and the goal's components where the path between them crosses a lazy
-// edge that is blocked grow on from the components left (panda_shelf, 400 samples a tree, as svmp-plan
-// --queries 100 --seed 1): the first query the lazy roadmap does not answer (its 6th) is answered by trees, certified
-// and free when re-checked finely, with the build's centring still pending and no eager pass. Trees
-// that stopped at their first join left it to the centring and the eager pass (22.9k checks, against
-// RRTConnect's 1.5k).
+// edge that is blocked grow on from the components left (panda_shelf, 400 samples a tree, as
+// svmp-plan --queries 100 --seed 1): the first query the lazy roadmap does not answer (its 6th) is
+// answered by trees, certified and free when re-checked finely, with the build's centring still
+// pending and no eager pass. Trees that stopped at their first join left it to the centring and the
+// eager pass (22.9k checks, against RRTConnect's 1.5k).
 TEST(RoadmapQuery, SvmpTreesGrowOnWhenTheirJoinCrossesABlockedLazyEdge) {
   auto w = makeWorld(test::readScenario("panda_shelf.yaml"));
   w->certify();
