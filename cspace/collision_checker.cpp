@@ -197,19 +197,15 @@ int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool
   int lowest = std::numeric_limits<int>::max();
   for (int i = 0; i < robot_->numLinks(); ++i) {
     for (Placed& part : ws.parts[i]) {
-      if (grid_) {
-        grid_->forEachCandidate(part.box, [&](int index) {
-          const Obstacle& o = env_->obstacles()[index];
-          if (o.id < lowest && (include_virtual || !o.is_virtual) && pairCollides(part, ws.obstacle_parts[index]))
-            lowest = o.id;
-        });
-        continue;
-      }
-      for (const auto& o : env_->obstacles()) {
-        if (o.id >= lowest) break;
-        if (o.is_virtual && !include_virtual) continue;
-        if (pairCollides(part, ws.obstacle_parts[o.id - 1])) lowest = o.id;
-      }
+      const auto consider = [&](int index) {  // index = id - 1
+        const Obstacle& o = env_->obstacles()[index];
+        if (o.id < lowest && (include_virtual || !o.is_virtual) && pairCollides(part, ws.obstacle_parts[index]))
+          lowest = o.id;
+      };
+      if (grid_)
+        grid_->forEachCandidate(part.box, consider);
+      else  // ids ascend: none past the lowest hit so far can lower it
+        for (int index = 0; index < std::ssize(env_->obstacles()) && index + 1 < lowest; ++index) consider(index);
     }
   }
   if (lowest != std::numeric_limits<int>::max()) return lowest;

@@ -28,7 +28,7 @@ ObstacleGrid::ObstacleGrid(const std::vector<Eigen::AlignedBox3d>& boxes) {
     first_cell_[i] = lo;
     for (int z = lo[2]; z <= hi[2]; ++z)
       for (int y = lo[1]; y <= hi[1]; ++y)
-        for (int x = lo[0]; x <= hi[0]; ++x) cells[(z * dims_[1] + y) * dims_[0] + x].push_back(static_cast<int>(i));
+        for (int x = lo[0]; x <= hi[0]; ++x) cells[cellIndex(x, y, z)].push_back(static_cast<int>(i));
   }
   cell_start_.assign(1, 0);
   for (const auto& c : cells) {

@@ -33,7 +33,7 @@ class ObstacleGrid {
     for (int z = lo[2]; z <= hi[2]; ++z)
       for (int y = lo[1]; y <= hi[1]; ++y)
         for (int x = lo[0]; x <= hi[0]; ++x) {
-          const int cell = (z * dims_[1] + y) * dims_[0] + x;
+          const int cell = cellIndex(x, y, z);
           for (int k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
             const int i = entries_[k];
             const std::array<int, 3>& first = first_cell_[i];
@@ -48,6 +48,7 @@ class ObstacleGrid {
 
  private:
   std::array<int, 3> cellOf(const Eigen::Vector3d& p) const;
+  int cellIndex(int x, int y, int z) const { return (z * dims_[1] + y) * dims_[0] + x; }
 
   Eigen::AlignedBox3d bounds_;
   Eigen::Vector3d cell_size_;
