@@ -20,6 +20,7 @@
 #include "planners/nearest_neighbors.hpp"
 #include "planners/roadmap_builder.hpp"
 #include "planners/svmp_planner.hpp"
+#include "svm/local_one_vs_rest.hpp"
 
 namespace svmp {
 namespace {
@@ -137,6 +138,31 @@ struct BuiltSvmp {
         svmp(context, planners::SvmpOptions::fromParameters(scenario.paramsFor("svmp"))),
         built(svmp.build(1).solved()) {}
 };
+
+// The per-class neighbourhoods SVMP trains each obstacle's model on (svm::classNeighbourhoods) over
+// the boundary samples of Fig 4.10 (arg 0) and panda_shelf (arg 1), built with the files' parameters
+// (seed 1) and scaled by the metric, as SvmpPlanner::trainMultiSvm gives them (it adds a tenth of the
+// interior samples).
+void BM_ClassNeighbourhoods(benchmark::State& state) {
+  static BuiltSvmp fig4_10("thesis_fig4_10.yaml", false), shelf("panda_shelf.yaml", false);
+  BuiltSvmp& w = state.range(0) == 0 ? fig4_10 : shelf;
+  const planners::ObstacleSamples& samples = w.svmp.samples();
+  std::vector<int> kept, labels;
+  for (int i = 0; i < samples.size(); ++i)
+    if (samples.boundary[i]) kept.push_back(i), labels.push_back(samples.labels[i]);
+  Eigen::MatrixXd scaled(w.space.dim(), static_cast<Eigen::Index>(kept.size()));
+  for (size_t j = 0; j < kept.size(); ++j)
+    scaled.col(static_cast<Eigen::Index>(j)) = samples.points.col(kept[j]).cwiseProduct(w.space.metricScale());
+  const std::set<int> ids(labels.begin(), labels.end());
+  const std::vector<int> classes(ids.begin(), ids.end());
+  const svm::Kernel kernel = svm::Kernel::rbfFromSigma(w.svmp.options().sigma);
+  std::vector<std::vector<int>> hoods;
+  for (auto _ : state) hoods = svm::classNeighbourhoods(scaled, labels, classes, kernel);
+  state.counters["samples"] = static_cast<double>(kept.size());
+  state.counters["share"] = svm::neighbourhoodShare(hoods, scaled.cols());
+  state.SetLabel(state.range(0) == 0 ? "fig4_10" : "panda_shelf");
+}
+BENCHMARK(BM_ClassNeighbourhoods)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // One query per iteration on SVMP's roadmap built with the file's parameters (seed 1): the roadmap is
 // assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers in turn the 100
