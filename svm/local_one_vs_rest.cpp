@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "svm/column_cloud.hpp"
+#include "svm/box_loops.hpp"
 #include "svm/simd_loops.hpp"
 
 namespace svmp::svm {
@@ -41,29 +42,23 @@ SolverResult solveFixedBias(const Eigen::MatrixXd& samples, const Eigen::VectorX
   r.alpha = Eigen::VectorXd::Zero(m);
   r.bias = bias;
   const Eigen::VectorXd p = (1.0 - bias * y.array()).matrix();
-  // Each coordinate appears twice, as the vectorised SMO loops (svm/simd_loops.hpp) see it: entry t
-  // holds G_t, entry m + t holds -G_t, and up[] opens entry t while a_t may grow (a_t < C_t) and
-  // entry m + t while it may shrink (a_t > 0). Then max_t up[t] - Y[t] is the largest KKT violation,
-  // and a column holding y_t K_ti and then its negation updates both halves in one pass.
-  const int n2 = 2 * m;
+  // G = Qa - p; up[t] opens a growing step while a_t < C_t and down[t] a shrinking one while a_t > 0
+  // (svm/box_loops.hpp): the largest violation's index is t to grow a_t, m + t to shrink it.
   constexpr double kClosed = -std::numeric_limits<double>::infinity();
-  std::vector<double> Y(n2), up(n2);
+  std::vector<double> G(m), up(m), down(m, kClosed);
   for (int t = 0; t < m; ++t) {
-    Y[t] = -p[t], Y[m + t] = p[t];
-    up[t] = C[t] > 0 ? 0.0 : kClosed, up[m + t] = kClosed;
+    G[t] = -p[t];
+    up[t] = C[t] > 0 ? 0.0 : kClosed;
   }
   std::vector<std::vector<float>> columns(m);
   std::vector<double> z(d);
-  auto column = [&](int i) -> const float* {
+  auto column = [&](int i) -> const float* {  // y_t K_ti, truncated below exp(-5)
     std::vector<float>& k = columns[i];
     if (k.empty()) {
-      k.resize(n2);
+      k.resize(m);
       for (int c = 0; c < d; ++c) z[c] = X(c, i);
       loops::rbfColumn(X.data(), m, d, z.data(), -gamma, m, k.data());
-      for (int t = 0; t < m; ++t) {
-        k[t] = k[t] < cut ? 0.0f : static_cast<float>(y[t]) * k[t];  // truncated below exp(-5)
-        k[m + t] = -k[t];
-      }
+      for (int t = 0; t < m; ++t) k[t] = k[t] < cut ? 0.0f : static_cast<float>(y[t]) * k[t];
       ++r.cache_misses;
       r.kernel_entries += m;
     } else {
@@ -71,7 +66,7 @@ SolverResult solveFixedBias(const Eigen::MatrixXd& samples, const Eigen::VectorX
     }
     return k.data();
   };
-  loops::ArgMax worst = loops::selectI(n2, up.data(), Y.data());
+  loops::ArgMax worst = loops::updateGradientSelectBox(m, G.data(), nullptr, 0.0, up.data(), down.data());
   while (worst.index >= 0 && worst.value > opt.eps) {
     if (r.iterations >= opt.max_iterations) {
       r.status = SolverStatus::kIterationLimit;
@@ -79,16 +74,15 @@ SolverResult solveFixedBias(const Eigen::MatrixXd& samples, const Eigen::VectorX
     }
     ++r.iterations;
     const int i = worst.index % m;
-    const double next = std::clamp(r.alpha[i] - Y[i], 0.0, C[i]);  // Q_ii = 1
+    const double next = std::clamp(r.alpha[i] - G[i], 0.0, C[i]);  // Q_ii = 1
     const double w = (next - r.alpha[i]) * y[i];
     r.alpha[i] = next;
     up[i] = next < C[i] ? 0.0 : kClosed;
-    up[m + i] = next > 0 ? 0.0 : kClosed;
-    const float* k = column(i);
-    worst = loops::updateGradientSelectI(n2, Y.data(), k, k, w, 0.0, up.data());
+    down[i] = next > 0 ? 0.0 : kClosed;
+    worst = loops::updateGradientSelectBox(m, G.data(), column(i), w, up.data(), down.data());
   }
   r.violation = worst.index >= 0 ? std::max(0.0, worst.value) : 0.0;
-  r.gradient = Eigen::Map<const Eigen::VectorXd>(Y.data(), m);  // G = Qa - p
+  r.gradient = Eigen::Map<const Eigen::VectorXd>(G.data(), m);
   r.objective = 0.5 * r.alpha.dot(r.gradient + p) - p.dot(r.alpha);
   for (int i = 0; i < m; ++i) {
     r.support_vectors += r.alpha[i] > 0;

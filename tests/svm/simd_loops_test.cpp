@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "svm/box_loops.hpp"
 #include "svm/simd_loops.hpp"
 
 namespace svmp::svm::loops {
@@ -81,6 +82,34 @@ TEST(SimdLoops, UpdateGradientSelectIUpdatesEveryEntryAndFindsTheFirstMaximum) {
         if (index >= 0) {
           EXPECT_NEAR(r.value, value, 1e-15);
         }
+      }
+}
+
+// The fixed-bias solver's loop (one entry per coordinate) against the SMO loop over the doubled
+// entries it replaced (G and -G, K and -K): the same gradient and the same index, ties included.
+TEST(SimdLoops, UpdateGradientSelectBoxAgreesWithTheDoubledEntries) {
+  std::mt19937_64 rng(5);
+  for (bool tied : {false, true})
+    for (int m = 0; m <= 70; ++m)
+      for (int rep = 0; rep < 5; ++rep) {
+        Entries e = randomEntries(m, tied, rng), f = randomEntries(m, tied, rng);
+        const double w = tied ? 0.0 : -0.9;
+        std::vector<double> yG(2 * m), up(2 * m);
+        std::vector<float> K(2 * m);
+        for (int t = 0; t < m; ++t) {
+          yG[t] = e.yG[t], yG[m + t] = -e.yG[t];
+          up[t] = e.up[t], up[m + t] = f.up[t];
+          K[t] = e.Ki[t], K[m + t] = -e.Ki[t];
+        }
+        const ArgMax doubled = updateGradientSelectI(2 * m, yG.data(), K.data(), K.data(), w, 0.0, up.data());
+        const ArgMax box = updateGradientSelectBox(m, e.yG.data(), e.Ki.data(), w, e.up.data(), f.up.data());
+        for (int t = 0; t < m; ++t) ASSERT_EQ(e.yG[t], yG[t]) << "entry " << t << " of " << m;
+        ASSERT_EQ(box.index, doubled.index) << "m " << m << " tied " << tied;
+        if (box.index >= 0) {
+          EXPECT_EQ(box.value, doubled.value);
+        }
+        const ArgMax unchanged = updateGradientSelectBox(m, e.yG.data(), nullptr, w, e.up.data(), f.up.data());
+        EXPECT_EQ(unchanged.index, box.index);
       }
 }
 
