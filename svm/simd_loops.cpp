@@ -374,6 +374,17 @@ SVMP_AVX512 ArgMax selectIAvx512(int m, const double* up, const double* yG) {
 // blend is a dependency chain from one step to the next, and two chains hide its latency (solves
 // 13-18% faster at 400-2,000 samples, docs/benchmarks.md).
 
+// reduceLanes<8> without branches (their outcome is data-dependent, so a loop over the lanes
+// mispredicts): the lanes' best value, the smallest index among the lanes holding it, then merged
+// into (value, index) with the same rule. Lanes with no entry hold +-inf and index -1.
+template <bool kMax>
+SVMP_AVX512 inline void mergeLanes8(__m512d best, __m512d idx, double& value, int& index) {
+  const double v = kMax ? _mm512_reduce_max_pd(best) : _mm512_reduce_min_pd(best);
+  const __mmask8 at = _mm512_cmp_pd_mask(best, _mm512_set1_pd(v), _CMP_EQ_OQ);
+  const int i = static_cast<int>(_mm512_mask_reduce_min_pd(at, idx));
+  if ((kMax ? v > value : v < value) || (v == value && i < index)) value = v, index = i;
+}
+
 // The best-so-far entries of 8 lanes of selectJAvx512: the WSS2 fraction num/quad and its index.
 struct SelectJLanes {
   __m512d g2, num, quad, idx;
@@ -416,7 +427,7 @@ SVMP_AVX512 SelectJ selectJAvx512(int m, const double* low, const double* yG, co
   for (const SelectJLanes* s : {&a, &b}) {
     const __m512d obj = _mm512_mul_pd(_mm512_set1_pd(-1.0), _mm512_div_pd(s->num, s->quad));
     const __mmask8 none = _mm512_cmp_pd_mask(s->idx, _mm512_setzero_pd(), _CMP_LT_OQ);
-    reduceLanes<8, false>(_mm512_mask_blend_pd(none, obj, _mm512_set1_pd(kInf)), s->idx, r.obj_min, r.j);
+    mergeLanes8<false>(_mm512_mask_blend_pd(none, obj, _mm512_set1_pd(kInf)), s->idx, r.obj_min, r.j);
   }
   selectJTail(t, m, low, yG, diag, Ki, kii, gmax, tau, r);
   return r;
@@ -454,8 +465,8 @@ SVMP_AVX512 ArgMax updateGradientSelectIAvx512(int m, double* yG, const float* K
   }
   if (t + 8 <= m) updateSelectIStep(t, tv, yG, Ki, Kj, vwi, vwj, up, best_a, idx_a), t += 8;
   ArgMax r{-kInf, -1};
-  reduceLanes<8, true>(best_a, idx_a, r.value, r.index);
-  reduceLanes<8, true>(best_b, idx_b, r.value, r.index);
+  mergeLanes8<true>(best_a, idx_a, r.value, r.index);
+  mergeLanes8<true>(best_b, idx_b, r.value, r.index);
   maxUpMinusYGTail<true>(t, m, yG, Ki, Kj, wi, wj, up, r);
   return r;
 }
