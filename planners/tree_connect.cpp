@@ -36,13 +36,24 @@ TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vect
   TreeConnectResult out;
   if (a.empty() || b.empty() || !(range > 0)) return out;
   const cspace::ConfigurationSpace& space = context.space;
-  for (; out.samples < samples && !stop(); ++out.samples, std::swap(a, b)) {
+  // Balanced (tree_connect.hpp): the tree that has grown fewer nodes in this search explores next,
+  // the two in turn while they have grown as many.
+  struct Tree {
+    std::vector<int> nodes;
+    size_t roots;  // the component it started from: nodes[0, roots)
+    size_t grown() const { return nodes.size() - roots; }
+  };
+  const size_t roots_a = a.size(), roots_b = b.size();
+  Tree first{std::move(a), roots_a}, second{std::move(b), roots_b};
+  Tree *explore = &first, *join = &second;
+  for (; out.samples < samples && !stop(); ++out.samples) {
+    if (out.samples > 0 && join->grown() <= explore->grown()) std::swap(explore, join);
     const Eigen::VectorXd q = space.sampleUniform(rng);
-    const int grown = extend(roadmap, a, nearestIn(roadmap, a, q, space), q, context, range);
+    const int grown = extend(roadmap, explore->nodes, nearestIn(roadmap, explore->nodes, q, space), q, context, range);
     if (grown < 0) continue;
     ++out.added;
     const Eigen::VectorXd target = roadmap.node(grown);
-    for (int tip = nearestIn(roadmap, b, target, space);;) {
+    for (int tip = nearestIn(roadmap, join->nodes, target, space);;) {
       const double gap = space.distance(roadmap.node(tip), target);
       if (gap <= range) {
         if (!context.validator.isValid(roadmap.node(tip), target)) break;
@@ -50,7 +61,7 @@ TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vect
         out.connected = true;
         return out;
       }
-      tip = extend(roadmap, b, tip, target, context, range);
+      tip = extend(roadmap, join->nodes, tip, target, context, range);
       if (tip < 0) break;
       ++out.added;
     }

@@ -3,7 +3,13 @@
 // as one tree whose nodes are all roots, as the sampling-based roadmap of trees does (Plaku, Bekris,
 // Chen, Ladd and Kavraki, IEEE T-RO 2005). Each uniform sample extends one tree by one step of
 // `range` from its nearest node; the other tree then connects towards the new node step by step
-// until it reaches it (the components are joined) or is blocked; the trees swap roles. SVMP's repair
+// until it reaches it (the components are joined) or is blocked. The search is balanced (LaValle,
+// Planning Algorithms, 2006, sec. 5.5.3): the tree that has grown fewer nodes in it explores next,
+// the two in turn while they have grown as many. A tree stuck in a pocket fails most of its steps
+// and so gets most of the samples, where a roadmap component in open space would have spent half
+// of them growing where the roadmap already is (Fig 4.10: 9 of 20 goals had no free edge to the
+// roadmap; trees that took turns each sample checked 1.4x as much, panda_shelf 2x;
+// docs/reproduction.md, "Balanced trees"). SVMP's repair
 // (planners/svmp_repair.cpp) runs it in a round whose SVM-guided nodes did not join the start's and
 // the goal's components: where the decision boundaries do not lead through a passage, the trees
 // still explore it.

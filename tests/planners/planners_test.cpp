@@ -515,6 +515,43 @@ TEST(TreeConnect, JoinsTwoComponentsThroughTheGapOnFreeEdges) {
   EXPECT_EQ(connectByTrees(none, {0}, {}, w->context, 0.1, 100, rng).samples, 0) << "no tree to connect to";
 }
 
+// The balanced search (LaValle 2006, sec. 5.5.3): a roadmap component spread over the open left
+// half against one node at the back of a pocket on the right (a cup of three walls, open to the
+// right). The component's steps into open space succeed and the pocket's mostly fail, so the
+// pocket's tree gets the turns until it has grown as much. Over 20 seeds a join took 1,254 checks;
+// trees that took turns each sample checked 2,838.
+TEST(TreeConnect, ThePocketsTreeExploresUntilItHasGrownAsMuch) {
+  auto w = makeWorld(
+      "name: pocket\n"
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: top, shape: box, size: [0.24, 0.04, 1.0], position: [0.82, 0.58, 0]}\n"
+      "  - {name: bottom, shape: box, size: [0.24, 0.04, 1.0], position: [0.82, 0.42, 0]}\n"
+      "  - {name: back, shape: box, size: [0.04, 0.2, 1.0], position: [0.72, 0.5, 0]}\n"
+      "start: [0.1, 0.1]\n"
+      "goal: [0.8, 0.5]\n"
+      "resolution: 0.002\n"
+      "planners:\n" + std::string(kPlanners));
+  std::uint64_t checks = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    Roadmap roadmap;
+    std::vector<int> left;
+    for (int i = 0; i < 10; ++i)
+      for (int j = 0; j < 10; ++j) {
+        left.push_back(roadmap.addNode(Eigen::Vector2d(0.025 + 0.05 * i, 0.05 + 0.1 * j)));
+        if (left.size() > 1) roadmap.addEdge(left[left.size() - 2], left.back(), 0.0);
+      }
+    const int pocket = roadmap.addNode(Eigen::Vector2d(0.8, 0.5));
+    cspace::Rng rng(seed);
+    const auto before = w->checker.collisionChecks();
+    const TreeConnectResult out = connectByTrees(roadmap, left, {pocket}, w->context, 0.1, 20000, rng);
+    ASSERT_TRUE(out.connected) << "seed " << seed;
+    EXPECT_TRUE(roadmap.connected(left.front(), pocket));
+    checks += w->checker.collisionChecks() - before;
+  }
+  EXPECT_LT(checks / 20, 2000u);
+}
+
 // Fig 4.4's seeds 4, 5 and 11 ended with the start's and the goal's components (1,300 and 500-1,100
 // nodes) unjoined after 20 SVM-guided repair rounds; the trees join them. Certified, densely free.
 TEST(TreeConnect, SvmpRepairSolvesFig44WhereGuidedRoundsAloneDidNot) {
