@@ -6,6 +6,8 @@
 
 #include <limits>
 
+#include "svm/avx512_lanes.hpp"
+
 namespace svmp::svm::loops {
 namespace {
 
@@ -28,16 +30,10 @@ ArgMax combine(int m, ArgMax grow, const ArgMax& shrink) {
   return grow;
 }
 
-#define SVMP_AVX512 __attribute__((target("avx512f,fma")))
-
-// Lane winner of 8 lanes: the largest value, the smallest index on ties; without branches, whose
-// outcome no predictor learns (a loop over the lanes cost as much as the pass over the entries).
-SVMP_AVX512 ArgMax reduce8(__m512d best, __m512d idx) {
-  const double value = _mm512_reduce_max_pd(best);
-  const __mmask8 at = _mm512_cmp_pd_mask(best, _mm512_set1_pd(value), _CMP_EQ_OQ);
-  return {value, static_cast<int>(_mm512_mask_reduce_min_pd(at, idx))};
-}
-
+// GCC 12 warns about _mm512_undefined_pd inside its own intrinsics at -O3 (a known false positive).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 // The growing and shrinking maxima are two independent chains of blends, so one set of lanes each
 // hides the blend's latency (the SMO loop needs two sets for its one chain).
 SVMP_AVX512 ArgMax updateGradientSelectBoxAvx512(int m, double* G, const float* K, double w,
@@ -61,10 +57,13 @@ SVMP_AVX512 ArgMax updateGradientSelectBoxAvx512(int m, double* G, const float* 
     shrink = _mm512_mask_blend_pd(d_better, shrink, d);
     shrink_idx = _mm512_mask_blend_pd(d_better, shrink_idx, tv);
   }
-  ArgMax g = reduce8(grow, grow_idx), s = reduce8(shrink, shrink_idx);
+  ArgMax g{-kInf, -1}, s{-kInf, -1};
+  mergeLanes8<true>(grow, grow_idx, g.value, g.index);
+  mergeLanes8<true>(shrink, shrink_idx, s.value, s.index);
   boxTail(t, m, G, K, w, up, down, g, s);
   return combine(m, g, s);
 }
+#pragma GCC diagnostic pop
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include <limits>
 #include <string>
 
+#include "svm/avx512_lanes.hpp"
 #include "svm/kernel.hpp"
 
 namespace svmp::svm::loops {
@@ -360,30 +361,18 @@ SVMP_AVX2 double truncatedRbfSumAvx2(const BlockedSupportVectors& sv, const doub
               : truncatedRbfSumDispatch<4, false>(sv, q, gamma, r2, grad);
 }
 
-#define SVMP_AVX512 __attribute__((target("avx512f,fma")))
-
 SVMP_AVX512 ArgMax selectIAvx512(int m, const double* up, const double* yG) {
   return selectIImpl<8>(m, up, yG);
 }
 // GCC 12 warns about _mm512_undefined_pd inside its own intrinsics at -O3 (a known false positive).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 // selectJImpl and updateGradientSelectIImpl with AVX-512 intrinsics: GCC 12 turns the vector-extension
 // selects of their <8> forms into one scalar compare per lane (3x slower than AVX2); mask registers
 // keep them in vectors. Each runs two sets of lanes (entries t and t + 8 of every 16): the best-so-far
 // blend is a dependency chain from one step to the next, and two chains hide its latency (solves
 // 13-18% faster at 400-2,000 samples, docs/benchmarks.md).
-
-// reduceLanes<8> without branches (their outcome is data-dependent, so a loop over the lanes
-// mispredicts): the lanes' best value, the smallest index among the lanes holding it, then merged
-// into (value, index) with the same rule. Lanes with no entry hold +-inf and index -1.
-template <bool kMax>
-SVMP_AVX512 inline void mergeLanes8(__m512d best, __m512d idx, double& value, int& index) {
-  const double v = kMax ? _mm512_reduce_max_pd(best) : _mm512_reduce_min_pd(best);
-  const __mmask8 at = _mm512_cmp_pd_mask(best, _mm512_set1_pd(v), _CMP_EQ_OQ);
-  const int i = static_cast<int>(_mm512_mask_reduce_min_pd(at, idx));
-  if ((kMax ? v > value : v < value) || (v == value && i < index)) value = v, index = i;
-}
 
 // The best-so-far entries of 8 lanes of selectJAvx512: the WSS2 fraction num/quad and its index.
 struct SelectJLanes {
