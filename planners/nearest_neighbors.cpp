@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nanoflann.hpp>
 
 #include "svm/column_cloud.hpp"
@@ -18,6 +19,7 @@ struct NearestNeighbors::Tree {
   explicit Tree(const Eigen::MatrixXd* pts) : cloud{pts} {}
   virtual ~Tree() = default;
   virtual size_t knn(const double* x, size_t n, size_t* index, double* dist) const = 0;
+  virtual int nearestWithin(const double* x, double radius2) const = 0;
 };
 
 namespace {
@@ -32,6 +34,15 @@ struct TreeOf final : NearestNeighbors::Tree {
   }
   size_t knn(const double* x, size_t n, size_t* out, double* dist) const override {
     return index.knnSearch(x, n, out, dist);
+  }
+  int nearestWithin(const double* x, double radius2) const override {
+    nanoflann::KNNResultSet<double, size_t, size_t> result(1);
+    size_t out = 0;
+    double dist = 0;
+    result.init(&out, &dist);
+    dist = radius2;  // the result's worst distance: the search prunes every cell beyond it
+    index.findNeighbors(result, x, nanoflann::SearchParams());
+    return result.size() == 1 ? static_cast<int>(out) : -1;
   }
 };
 
@@ -72,6 +83,13 @@ std::vector<int> NearestNeighbors::nearest(const Eigen::Ref<const Eigen::VectorX
   std::vector<double> dist(n);
   const size_t found = tree_->knn(x.data(), n, index.data(), dist.data());
   return std::vector<int>(index.begin(), index.begin() + found);
+}
+
+int NearestNeighbors::nearestWithin(const Eigen::Ref<const Eigen::VectorXd>& q, double radius) const {
+  if (!tree_ || !(radius >= 0)) return -1;
+  const Eigen::VectorXd x = q.cwiseProduct(scale_);
+  // The search keeps points strictly closer than its bound: one step above radius^2 keeps those at it.
+  return tree_->nearestWithin(x.data(), std::nextafter(radius * radius, std::numeric_limits<double>::infinity()));
 }
 
 namespace {

@@ -38,6 +38,9 @@ class NearestNeighbors {
 
   // Indices of the (up to) k nearest points, nearest first.
   std::vector<int> nearest(const Eigen::Ref<const Eigen::VectorXd>& q, int k) const;
+  // The index of the nearest point at most `radius` away, or -1: the search skips every cell beyond
+  // the radius, so a far query costs little.
+  int nearestWithin(const Eigen::Ref<const Eigen::VectorXd>& q, double radius) const;
   int size() const { return static_cast<int>(scaled_.cols()); }
 
   struct Tree;  // the k-d tree, of a fixed dimension where it can be (nearest_neighbors.cpp)

@@ -53,8 +53,8 @@ struct SvmpOptions {
   int descent_iterations = 100;
   double duplicate_radius = -1;   // milestones closer than this are merged; < 0: step / 2
   // Query repair rounds without progress allowed (0 disables repair); a round that grows the start's
-  // or goal's component costs none, up to 8 x repair_rounds rounds in all (4x stopped runs in 3-D
-  // tunnels whose components were still growing; docs/reproduction.md, "Problems made after the defaults").
+  // or goal's component costs none, up to 32 x repair_rounds rounds in all (fewer stopped runs whose
+  // components were still growing; docs/reproduction.md, "Repair that runs on while it grows").
   int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
   // When the lazy roadmap did not answer a query, RRT-Connect trees between the start's and the

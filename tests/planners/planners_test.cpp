@@ -595,5 +595,17 @@ TEST(NarrowPassage, SvmpRepairSpreadsOverAWallToFindItsWindow) {
   EXPECT_TRUE(pathIsValid(*w, r.path));
 }
 
+// The same wall: on seed 50 both components were still growing after 40 rounds (2.7k and 2.4k
+// nodes), when the round limit used to stop the repair. Rounds that grow them now run on, up to 32 x
+// repair_rounds, and reach the window; certified, densely free.
+TEST(NarrowPassage, SvmpRepairRunsOnWhileItGrows) {
+  auto w = makeWorld(test::readScenario("../unseen/window3d.yaml"));
+  w->certify();
+  const PlanResult r = w->planner("svmp")->solve(w->query(), 50);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_TRUE(r.certified);
+  EXPECT_TRUE(pathIsValid(*w, r.path));
+}
+
 }  // namespace
 }  // namespace svmp::planners

@@ -243,6 +243,20 @@ TEST(NearestNeighbors, MatchesBruteForceInWeightedMetric) {
         std::vector<int> order(n);
         for (int i = 0; i < n; ++i) order[i] = i;
         std::sort(order.begin(), order.end(), [&](int a, int b) { return dist(a) < dist(b); });
+        // Within a radius: the nearest when it lies no farther, else none (radii about the nearest
+        // distance, so both sides are asked).
+        for (double factor : {0.5, 0.999, 1.001, 2.0}) {
+          const double radius = factor * dist(order[0]);
+          const int within = nn.nearestWithin(q, radius);
+          if (dist(order[0]) < radius) {
+            ASSERT_GE(within, 0) << "dim " << dim << " n " << n << " factor " << factor;
+            EXPECT_NEAR(dist(within), dist(order[0]), 1e-12);
+          } else {
+            EXPECT_EQ(within, -1) << "dim " << dim << " n " << n << " factor " << factor;
+          }
+        }
+        EXPECT_EQ(nn.nearestWithin(q, 0.0), -1);
+        EXPECT_GE(nn.nearestWithin(q, std::numeric_limits<double>::infinity()), 0);
         for (int k : {1, 5, n, n + 3}) {
           const auto got = nn.nearest(q, k);
           const int expected = std::min(k, n);
@@ -258,6 +272,7 @@ TEST(NearestNeighbors, MatchesBruteForceInWeightedMetric) {
 TEST(NearestNeighbors, EmptySetAndMovedTreeStillAnswer) {
   const NearestNeighbors empty({}, Eigen::Vector2d::Ones());
   EXPECT_TRUE(empty.nearest(Eigen::Vector2d::Zero(), 3).empty());
+  EXPECT_EQ(empty.nearestWithin(Eigen::Vector2d::Zero(), 1.0), -1);
   std::vector<Eigen::VectorXd> pts = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 3)};
   NearestNeighbors a(pts, Eigen::Vector2d(1, 0.01));  // y barely counts: (0,3) is at distance 0.3
   NearestNeighbors b = std::move(a);
@@ -266,6 +281,9 @@ TEST(NearestNeighbors, EmptySetAndMovedTreeStillAnswer) {
   EXPECT_EQ(got[0], 0);
   EXPECT_EQ(got[1], 2);
   EXPECT_EQ(got[2], 1);
+  EXPECT_EQ(b.nearestWithin(Eigen::Vector2d(1, 0), 0.0), 1);  // at the radius counts
+  EXPECT_EQ(b.nearestWithin(Eigen::Vector2d(0.5, 0), 0.49), -1);
+  EXPECT_EQ(b.nearestWithin(Eigen::Vector2d(0.5, 0), -1.0), -1);
 }
 
 // The grid must give exactly what the scan over every kept point gives, in order: in 1, 2, 3 and 7
