@@ -56,40 +56,78 @@ std::unique_ptr<NearestNeighbors::Tree> makeTree(const Eigen::MatrixXd* pts, int
 
 NearestNeighbors::NearestNeighbors(const std::vector<Eigen::VectorXd>& points,
                                    const Eigen::VectorXd& scale)
-    : scale_(scale) {
+    : tail_(scale.size(), 0), scale_(scale) {
   scaled_.resize(scale.size(), static_cast<Eigen::Index>(points.size()));
   for (size_t i = 0; i < points.size(); ++i) scaled_.col(i) = points[i].cwiseProduct(scale);
-  if (!points.empty()) tree_ = makeTree(&scaled_, static_cast<int>(scale.size()));
+  build();
 }
 
 NearestNeighbors::~NearestNeighbors() = default;
 NearestNeighbors::NearestNeighbors(NearestNeighbors&& other) noexcept
-    : scaled_(std::move(other.scaled_)), scale_(std::move(other.scale_)), tree_(std::move(other.tree_)) {
+    : scaled_(std::move(other.scaled_)),
+      tail_(std::move(other.tail_)),
+      scale_(std::move(other.scale_)),
+      tree_(std::move(other.tree_)) {
   if (tree_) tree_->cloud.points = &scaled_;
 }
 NearestNeighbors& NearestNeighbors::operator=(NearestNeighbors&& other) noexcept {
   scaled_ = std::move(other.scaled_);
+  tail_ = std::move(other.tail_);
   scale_ = std::move(other.scale_);
   tree_ = std::move(other.tree_);
   if (tree_) tree_->cloud.points = &scaled_;
   return *this;
 }
 
+void NearestNeighbors::build() {
+  tree_.reset();
+  if (scaled_.cols() > 0) tree_ = makeTree(&scaled_, static_cast<int>(scale_.size()));
+}
+
+void NearestNeighbors::extend(const std::vector<Eigen::VectorXd>& points) {
+  const Eigen::Index old_size = size(), added = static_cast<Eigen::Index>(points.size()) - old_size;
+  if (added <= 0) return;
+  const Eigen::Index first = tail_.cols();
+  tail_.conservativeResize(Eigen::NoChange, first + added);
+  for (Eigen::Index i = 0; i < added; ++i) tail_.col(first + i) = points[old_size + i].cwiseProduct(scale_);
+  if (tail_.cols() * 8 <= scaled_.cols()) return;
+  Eigen::MatrixXd all(scaled_.rows(), scaled_.cols() + tail_.cols());
+  all << scaled_, tail_;
+  scaled_ = std::move(all);
+  tail_.resize(scale_.size(), 0);
+  build();
+}
+
 std::vector<int> NearestNeighbors::nearest(const Eigen::Ref<const Eigen::VectorXd>& q, int k) const {
-  if (!tree_ || k <= 0) return {};
-  const size_t n = std::min<size_t>(static_cast<size_t>(k), static_cast<size_t>(size()));
+  if (size() == 0 || k <= 0) return {};
   const Eigen::VectorXd x = q.cwiseProduct(scale_);
+  const size_t n = std::min<size_t>(static_cast<size_t>(k), static_cast<size_t>(scaled_.cols()));
   std::vector<size_t> index(n);
   std::vector<double> dist(n);
-  const size_t found = tree_->knn(x.data(), n, index.data(), dist.data());
-  return std::vector<int>(index.begin(), index.begin() + found);
+  const size_t found = tree_ ? tree_->knn(x.data(), n, index.data(), dist.data()) : 0;
+  if (tail_.cols() == 0) return std::vector<int>(index.begin(), index.begin() + found);
+  std::vector<std::pair<double, int>> all;  // (squared distance, index)
+  for (size_t i = 0; i < found; ++i) all.emplace_back(dist[i], static_cast<int>(index[i]));
+  for (Eigen::Index t = 0; t < tail_.cols(); ++t)
+    all.emplace_back((tail_.col(t) - x).squaredNorm(), static_cast<int>(scaled_.cols() + t));
+  const size_t keep = std::min(all.size(), static_cast<size_t>(k));
+  std::partial_sort(all.begin(), all.begin() + keep, all.end());
+  std::vector<int> out(keep);
+  for (size_t i = 0; i < keep; ++i) out[i] = all[i].second;
+  return out;
 }
 
 int NearestNeighbors::nearestWithin(const Eigen::Ref<const Eigen::VectorXd>& q, double radius) const {
-  if (!tree_ || !(radius >= 0)) return -1;
+  if (size() == 0 || !(radius >= 0)) return -1;
   const Eigen::VectorXd x = q.cwiseProduct(scale_);
   // The search keeps points strictly closer than its bound: one step above radius^2 keeps those at it.
-  return tree_->nearestWithin(x.data(), std::nextafter(radius * radius, std::numeric_limits<double>::infinity()));
+  double bound = std::nextafter(radius * radius, std::numeric_limits<double>::infinity());
+  int best = tree_ ? tree_->nearestWithin(x.data(), bound) : -1;
+  if (best >= 0) bound = (scaled_.col(best) - x).squaredNorm();
+  for (Eigen::Index t = 0; t < tail_.cols(); ++t)
+    if (const double d = (tail_.col(t) - x).squaredNorm(); d < bound)
+      best = static_cast<int>(scaled_.cols() + t), bound = d;
+  return best;
 }
 
 namespace {

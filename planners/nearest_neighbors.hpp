@@ -36,17 +36,27 @@ class NearestNeighbors {
   NearestNeighbors(NearestNeighbors&&) noexcept;
   NearestNeighbors& operator=(NearestNeighbors&&) noexcept;
 
+  // Adds points[size(), points.size()): the caller's set has grown at its end (a roadmap's nodes).
+  // The new points are scanned by every query until they outnumber an eighth of the indexed ones;
+  // then the tree is built again over all. Answers are the same as a new tree's (both exact; among
+  // points exactly as near, the order may differ). A long SVMP repair rebuilt its tree twice a round
+  // over 10-20k nodes to add a few hundred.
+  void extend(const std::vector<Eigen::VectorXd>& points);
+
   // Indices of the (up to) k nearest points, nearest first.
   std::vector<int> nearest(const Eigen::Ref<const Eigen::VectorXd>& q, int k) const;
   // The index of the nearest point at most `radius` away, or -1: the search skips every cell beyond
   // the radius, so a far query costs little.
   int nearestWithin(const Eigen::Ref<const Eigen::VectorXd>& q, double radius) const;
-  int size() const { return static_cast<int>(scaled_.cols()); }
+  int size() const { return static_cast<int>(scaled_.cols() + tail_.cols()); }
 
   struct Tree;  // the k-d tree, of a fixed dimension where it can be (nearest_neighbors.cpp)
 
  private:
-  Eigen::MatrixXd scaled_;  // dim x n, column-major (one point per column)
+  void build();
+
+  Eigen::MatrixXd scaled_;  // the indexed points, dim x n, column-major (one point per column)
+  Eigen::MatrixXd tail_;    // the points added since, indices scaled_.cols() onwards
   Eigen::VectorXd scale_;
   std::unique_ptr<Tree> tree_;
 };

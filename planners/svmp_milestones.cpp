@@ -76,7 +76,7 @@ int SvmpPlanner::centreDeferred() {
   int added = 0;
   for (const auto& c : centres)
     if (c) roadmap_.addNode(*c), ++added;
-  if (added > 0) nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
+  if (added > 0) nn_->extend(roadmap_.nodes());
   return added;
 }
 

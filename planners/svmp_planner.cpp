@@ -353,7 +353,7 @@ void SvmpPlanner::keepTreeNodes(const Roadmap& with_query, int first) {
   roadmap_.restoreWithinComponents(links);
   grown_by_trees_.resize(n, false);
   grown_by_trees_.resize(roadmap_.numNodes(), true);
-  nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
+  nn_->extend(roadmap_.nodes());
 }
 
 void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,

@@ -220,7 +220,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     grown_by_trees_.resize(roadmap_.numNodes(), true);
     if (trees.added > 0) {
       added += trees.added;
-      nn_.emplace(roadmap_.nodes(), scale);
+      nn_->extend(roadmap_.nodes());
       connectMilestones(roadmap_, *nn_, context_, options_.k, first, stop);
     }
   };
@@ -254,7 +254,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   added += addMilestones(starts, std::vector<int>(starts.size(), -1), stop, true,
                          std::min(options_.duplicate_radius, 0.25 * narrowest));
   if (roadmap_.numNodes() > guided_begin) {
-    nn_.emplace(roadmap_.nodes(), scale);
+    nn_->extend(roadmap_.nodes());
     connectMilestones(roadmap_, *nn_, context_, options_.k, guided_begin, stop);
   }
   // Where the guided nodes did not join the two, the trees.

@@ -269,6 +269,40 @@ TEST(NearestNeighbors, MatchesBruteForceInWeightedMetric) {
   }
 }
 
+// Points added at the end (NearestNeighbors::extend), in steps that leave some unindexed and some
+// that force a rebuild: every answer is the brute force's, as from a tree built over all of them.
+TEST(NearestNeighbors, ExtendedSetAnswersAsBruteForce) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const Eigen::Vector3d weights(0.3, 2.0, 1.0);
+  std::vector<Eigen::VectorXd> points;
+  auto add = [&](int n) {
+    for (int i = 0; i < n; ++i) points.push_back(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
+  };
+  add(5);
+  NearestNeighbors nn({}, weights.cwiseSqrt());
+  nn.extend(points);  // from empty
+  for (int step : {3, 40, 1, 7, 200, 2}) {
+    add(step);
+    nn.extend(points);
+    ASSERT_EQ(nn.size(), static_cast<int>(points.size()));
+    for (int query = 0; query < 20; ++query) {
+      const Eigen::Vector3d q(1.2 * unit(rng), 1.2 * unit(rng), 1.2 * unit(rng));
+      auto dist = [&](int i) { return std::sqrt(((points[i] - q).array().square() * weights.array()).sum()); };
+      std::vector<int> order(points.size());
+      for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+      std::sort(order.begin(), order.end(), [&](int a, int b) { return dist(a) < dist(b); });
+      const auto got = nn.nearest(q, 6);
+      ASSERT_EQ(got.size(), std::min<size_t>(6, points.size()));
+      for (size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(dist(got[i]), dist(order[i]), 1e-12) << "rank " << i;
+      const int within = nn.nearestWithin(q, 1.001 * dist(order[0]));
+      ASSERT_GE(within, 0);
+      EXPECT_NEAR(dist(within), dist(order[0]), 1e-12);
+      EXPECT_EQ(nn.nearestWithin(q, 0.999 * dist(order[0])), -1);
+    }
+  }
+}
+
 TEST(NearestNeighbors, EmptySetAndMovedTreeStillAnswer) {
   const NearestNeighbors empty({}, Eigen::Vector2d::Ones());
   EXPECT_TRUE(empty.nearest(Eigen::Vector2d::Zero(), 3).empty());
