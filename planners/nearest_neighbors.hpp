@@ -1,7 +1,7 @@
 #pragma once
 // k-nearest neighbours in the weighted joint metric (thesis eq. 4.3): a nanoflann k-d tree over the
-// points scaled by sqrt(w_d), where the metric is Euclidean. Built once over a fixed set; queries are
-// const and safe from many threads (each call owns its result buffers).
+// points scaled by sqrt(w_d), where the metric is Euclidean. Built over a set that may grow at its end
+// (extend); queries are const and safe from many threads (each call owns its result buffers).
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>

@@ -1,6 +1,6 @@
 // Hot paths of the planners: obstacle sampling (thesis Algorithm 1), milestone descent on the risk
-// function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric,
-// one query on a built SVMP roadmap (many queries, `svmp-plan --queries`), a lazy query's repeated
+// function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric
+// (a fixed set, and one growing as a repair grows it), one query on a built SVMP roadmap (many queries, `svmp-plan --queries`), a lazy query's repeated
 // searches, and the eager pass that connects a roadmap's milestones (node order, as the thesis, or
 // shortest pairs first).
 // The world is thesis Fig 3.7 (bench/scenarios/thesis_fig3_7.yaml) or the 5-DoF arm of Fig 4.4; the
@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -115,6 +116,34 @@ void BM_NearestNeighbors(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_NearestNeighbors)->Arg(1000)->Arg(10000);
+
+// A roadmap index growing as SVMP's repair grows it: 10,000 points in 6 dimensions, then 50 rounds
+// that add 200 points each and ask the 10 nearest of every new one. Arg 0: a tree built again
+// after each round (before 4397b46); 1: NearestNeighbors::extend.
+void BM_NearestNeighborsGrowing(benchmark::State& state) {
+  const int dim = 6, start = 10000, rounds = 50, per_round = 200;
+  cspace::Rng rng(5);
+  std::uniform_real_distribution<double> u(-3, 3);
+  std::vector<Eigen::VectorXd> all(start + rounds * per_round, Eigen::VectorXd(dim));
+  for (auto& p : all)
+    for (int d = 0; d < dim; ++d) p[d] = u(rng);
+  const Eigen::VectorXd scale = Eigen::VectorXd::LinSpaced(dim, 2.0, 0.5);
+  for (auto _ : state) {
+    std::vector<Eigen::VectorXd> points(all.begin(), all.begin() + start);
+    std::optional<planners::NearestNeighbors> nn(std::in_place, points, scale);
+    for (int r = 0; r < rounds; ++r) {
+      const size_t first = points.size();
+      points.insert(points.end(), all.begin() + static_cast<long>(first), all.begin() + static_cast<long>(first) + per_round);
+      if (state.range(0) == 1)
+        nn->extend(points);
+      else
+        nn.emplace(points, scale);
+      for (size_t i = first; i < points.size(); ++i) benchmark::DoNotOptimize(nn->nearest(points[i], 10));
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * rounds);
+}
+BENCHMARK(BM_NearestNeighborsGrowing)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // A scenario file of bench/scenarios and SVMP on it with the file's parameters, built with seed 1
 // (`built` false when the build failed); paths proven when `certify`.
