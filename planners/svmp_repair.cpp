@@ -108,14 +108,15 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   // For each node of with_query that is `inside`, its nearest roadmap node in the `outside` parts,
   // exact (a search among each node's nearest few missed a tunnel's nodes once the repair had filled
   // the space at its mouth); the closest pair first, and only the pairs within `reach` times its gap.
-  // The searches skip what lies beyond reach times the closest gap so far: the exact search of every
-  // node was 45% of a long repair's time (double_window3d, 80 rounds of 20k nodes).
+  // The searches skip what lies beyond reach times the closest gap so far (or `closest`, when known):
+  // the exact search of every node was 45% of a long repair's time (double_window3d, 80 rounds of 20k
+  // nodes). With `stride` > 1 only every stride-th inside node is searched.
   const auto pairsBetween = [&](const std::function<bool(int)>& inside, std::initializer_list<const Part*> outside,
-                                double reach) {
+                                double reach, int stride = 1,
+                                double closest = std::numeric_limits<double>::infinity()) {
     std::vector<Frontier> pairs;
-    double closest = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < with_query.numNodes(); ++i) {
-      if (!inside(i)) continue;
+    for (int i = 0, seen = 0; i < with_query.numNodes(); ++i) {
+      if (!inside(i) || seen++ % stride != 0) continue;
       Frontier pair{i, -1, std::numeric_limits<double>::infinity(), false};
       for (const Part* part : outside) {
         if (!part->nn) continue;
@@ -152,9 +153,8 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   }
   // The closest pair between the start's and the goal's components: the nearest outside nodes may
   // lead into dead ends while the two grow along one passage towards each other.
-  constexpr double kWithin = 4;  // the pairs whose gap is within this of the closest (below)
-  const std::vector<Frontier> between =
-      pairsBetween([&](int i) { return with_query.connected(start_node, i); }, {&on_goal}, kWithin);
+  const auto on_start_side = [&](int i) { return with_query.connected(start_node, i); };
+  const std::vector<Frontier> between = pairsBetween(on_start_side, {&on_goal}, 1.0);
   if (!between.empty()) {
     frontiers.push_back(between.front());
     // When it is last round's pair again, also one among the pairs within 4x its gap: the closest may
@@ -171,15 +171,24 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
                        trail.last_between.second == b;
     trail.last_between = {a, b};
     if (!again) trail.visited.push_back(0.5 * (a + b));
-    if (again && between.size() > 1) {
-      const Frontier* farthest = nullptr;
-      double best = -1;
-      for (auto f = between.begin() + 1; f != between.end(); ++f) {
-        const Eigen::VectorXd m = midpoint(*f);
-        double nearest = std::numeric_limits<double>::infinity();
-        for (const Eigen::VectorXd& v : trail.visited) nearest = std::min(nearest, context_.space.distance(m, v));
-        if (nearest > best) best = nearest, farthest = &*f;
-      }
+    // The pairs of at most kMaxCandidates start nodes, evenly strided: where the components lie far
+    // apart, 4x the closest gap takes in every node of the start's, and their searches were 40% of a
+    // late round on Fig 4.12's unsolvable pairs (10k nodes; the closest pair repeats every round).
+    constexpr double kWithin = 4;
+    constexpr int kMaxCandidates = 1024;
+    const int stride = 1 + static_cast<int>(on_start.ids.size()) / kMaxCandidates;
+    const std::vector<Frontier> candidates =
+        again ? pairsBetween(on_start_side, {&on_goal}, kWithin, stride, between.front().gap) : std::vector<Frontier>{};
+    const Frontier* farthest = nullptr;
+    double best = -1;
+    for (const Frontier& f : candidates) {
+      if (f.a == between.front().a && f.b == between.front().b) continue;
+      const Eigen::VectorXd m = midpoint(f);
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Eigen::VectorXd& v : trail.visited) nearest = std::min(nearest, context_.space.distance(m, v));
+      if (nearest > best) best = nearest, farthest = &f;
+    }
+    if (farthest) {
       frontiers.push_back(*farthest);
       trail.visited.push_back(midpoint(*farthest));
     }
