@@ -16,6 +16,21 @@ using test::gapScenario;
 using test::makeWorld;
 using test::pathIsValid;
 
+// svmp on a scenario file (path relative to bench/scenarios) with proofs on: every seed solved, its
+// path certified and free on a dense re-check (up to a stretch of the resolution, where
+// `clip_allowed`: a check at the resolution may clip a corner).
+void expectSvmpSolvesCertified(const std::string& file, std::initializer_list<std::uint64_t> seeds,
+                               bool clip_allowed = false) {
+  auto w = makeWorld(test::readScenario(file));
+  w->certify();
+  for (std::uint64_t seed : seeds) {
+    const PlanResult r = w->planner("svmp")->solve(w->query(), seed);
+    ASSERT_TRUE(r.solved()) << file << " seed " << seed << ": " << r.message;
+    EXPECT_TRUE(r.certified) << file << " seed " << seed;
+    EXPECT_TRUE(pathIsValid(*w, r.path, clip_allowed ? w->scenario.resolution : 0)) << file << " seed " << seed;
+  }
+}
+
 // A gap of usable width 0.001, twenty times narrower than sigma and the duplicate radius: the SVM
 // boundary strays from the gap's centre at its mouths, so straight edges out of the gap clip a
 // corner. Repair bridges the disconnection along the boundary (tangent steps, centred in the gap)
@@ -143,14 +158,7 @@ TEST(TreeConnect, ThePocketsTreeExploresUntilItHasGrownAsMuch) {
 // Fig 4.4's seeds 4, 5 and 11 ended with the start's and the goal's components (1,300 and 500-1,100
 // nodes) unjoined after 20 SVM-guided repair rounds; the trees join them. Certified, densely free.
 TEST(TreeConnect, SvmpRepairSolvesFig44WhereGuidedRoundsAloneDidNot) {
-  auto w = makeWorld(test::readScenario("thesis_fig4_4.yaml"));
-  w->certify();
-  for (std::uint64_t seed : {4, 5, 11}) {
-    const PlanResult r = w->planner("svmp")->solve(w->query(), seed);
-    ASSERT_TRUE(r.solved()) << "seed " << seed << ": " << r.message;
-    EXPECT_TRUE(r.certified);
-    EXPECT_TRUE(pathIsValid(*w, r.path, w->scenario.resolution)) << "seed " << seed;
-  }
+  expectSvmpSolvesCertified("thesis_fig4_4.yaml", {4, 5, 11}, true);
 }
 
 // A 3-D tunnel of square section 0.01 with two right-angle turns (bench/heldout, made after the
@@ -159,14 +167,7 @@ TEST(TreeConnect, SvmpRepairSolvesFig44WhereGuidedRoundsAloneDidNot) {
 // start's nodes) and the components still growing. The exact closest pairs and rounds up to 8 x
 // repair_rounds solve both; certified, densely free.
 TEST(NarrowPassage, SvmpRepairThreadsA3dTunnelWithTwoTurns) {
-  auto w = makeWorld(test::readScenario("../heldout/tunnel3d_step_01.yaml"));
-  w->certify();
-  for (std::uint64_t seed : {12, 17}) {
-    const PlanResult r = w->planner("svmp")->solve(w->query(), seed);
-    ASSERT_TRUE(r.solved()) << "seed " << seed << ": " << r.message;
-    EXPECT_TRUE(r.certified);
-    EXPECT_TRUE(pathIsValid(*w, r.path)) << "seed " << seed;
-  }
+  expectSvmpSolvesCertified("../heldout/tunnel3d_step_01.yaml", {12, 17});
 }
 
 // A wall with one 0.3 x 0.3 window off the start-goal line (bench/unseen, made after the defaults).
@@ -178,14 +179,7 @@ TEST(NarrowPassage, SvmpRepairThreadsA3dTunnelWithTwoTurns) {
 //   round limit used to stop the repair. Rounds that grow them now run on, up to 32 x repair_rounds.
 // Both certified, densely free.
 TEST(NarrowPassage, SvmpRepairSpreadsOverAWallToFindItsWindow) {
-  auto w = makeWorld(test::readScenario("../unseen/window3d.yaml"));
-  w->certify();
-  for (std::uint64_t seed : {4, 50}) {
-    const PlanResult r = w->planner("svmp")->solve(w->query(), seed);
-    ASSERT_TRUE(r.solved()) << "seed " << seed << ": " << r.message;
-    EXPECT_TRUE(r.certified);
-    EXPECT_TRUE(pathIsValid(*w, r.path)) << "seed " << seed;
-  }
+  expectSvmpSolvesCertified("../unseen/window3d.yaml", {4, 50});
 }
 
 }  // namespace
