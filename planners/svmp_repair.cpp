@@ -145,12 +145,11 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     frontiers.push_back(pairs.front());
     frontiers.back().alone = pairs.front().a == endpoint;
   }
-  int start_root = -1;  // a roadmap node in the start's component
-  std::vector<int> goal_side;
-  for (int j = 0; j < old_n; ++j) {
-    if (start_root < 0 && with_query.connected(start_node, j)) start_root = j;
-    if (with_query.connected(goal_node, j)) goal_side.push_back(j);
-  }
+  // The first roadmap node in the start's component and in the goal's, -1 when none; the two are one
+  // component when a path between them failed its proofs.
+  const Part& goal_part = with_query.connected(start_node, goal_node) ? on_start : on_goal;
+  const int start_root = on_start.ids.empty() ? -1 : on_start.ids.front();
+  const int goal_root = goal_part.ids.empty() ? -1 : goal_part.ids.front();
   // The closest pair between the start's and the goal's components: the nearest outside nodes may
   // lead into dead ends while the two grow along one passage towards each other.
   const auto on_start_side = [&](int i) { return with_query.connected(start_node, i); };
@@ -217,13 +216,13 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   // (fastron_panda: of length 4-5) would otherwise skip the trees round after round.
   int added = 0, checks = 0;
   const auto joined = [&] {
-    return roadmap_.connected(start_root, goal_side.front()) &&
-           !provenPath(roadmap_, start_root, goal_side.front(), context_, nullptr, checks, certify_ms).empty();
+    return roadmap_.connected(start_root, goal_root) &&
+           !provenPath(roadmap_, start_root, goal_root, context_, nullptr, checks, certify_ms).empty();
   };
   const auto growTrees = [&] {
     const int first = roadmap_.numNodes();
     const TreeConnectResult trees =
-        connectByTrees(roadmap_, roadmap_.component(start_root), roadmap_.component(goal_side.front()), context_,
+        connectByTrees(roadmap_, roadmap_.component(start_root), roadmap_.component(goal_root), context_,
                        options_.tree_range, options_.repair_samples, tree_rng, stop);
     grown_by_trees_.resize(first, false);
     grown_by_trees_.resize(roadmap_.numNodes(), true);
@@ -233,7 +232,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
       connectMilestones(roadmap_, *nn_, context_, options_.k, first, stop);
     }
   };
-  const bool trees = options_.repair_trees && start_root >= 0 && !goal_side.empty();
+  const bool trees = options_.repair_trees && start_root >= 0 && goal_root >= 0;
   // A component of at most k roadmap nodes is an endpoint's pocket that the roadmap barely reaches
   // (panda_shelf's random queries: an end in a shelf compartment, 1-20 nodes): trees grown out of it
   // join it in a few hundred checks, a guided round costs about 50 ms there. Between two large
@@ -241,12 +240,12 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
   // find a longer way round (gap_0.002: paths 33% longer with trees first).
   int smaller = 0;
   if (trees) {
-    int on_start = 0, on_goal = 0;
+    int start_size = 0, goal_size = 0;  // in roadmap_, without the query's edges
     for (int j = 0; j < old_n; ++j) {
-      on_start += roadmap_.connected(j, start_root);
-      on_goal += roadmap_.connected(j, goal_side.front());
+      start_size += roadmap_.connected(j, start_root);
+      goal_size += roadmap_.connected(j, goal_root);
     }
-    smaller = std::min(on_start, on_goal);
+    smaller = std::min(start_size, goal_size);
   }
   const bool trees_first = trees && smaller <= options_.k;
   if (trees_first && !stop()) {
