@@ -262,4 +262,25 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
   return samples;
 }
 
+void addBoundsSamples(const ConfigurationSpace& space, int count, std::uint64_t seed, ObstacleSamples& samples) {
+  const int dim = space.dim();
+  const Eigen::VectorXd extent = (space.upper() - space.lower()).cwiseProduct(space.metricScale());
+  // A face normal to axis j measures the product of the other extents: proportional to 1 / extent_j.
+  std::vector<double> face_weights(dim);
+  for (int j = 0; j < dim; ++j) face_weights[j] = extent[j] > 0 ? 1.0 / extent[j] : 0.0;
+  std::discrete_distribution<int> axis_of(face_weights.begin(), face_weights.end());
+  std::bernoulli_distribution upper_side(0.5);
+  cspace::Rng rng(seed ^ 0xB0B0B0B0ULL);
+  const Eigen::Index first = samples.points.cols();
+  samples.points.conservativeResize(dim, first + count);
+  for (int i = 0; i < count; ++i) {
+    Eigen::VectorXd q = space.sampleUniform(rng);
+    const int axis = axis_of(rng);
+    q[axis] = upper_side(rng) ? space.upper()[axis] : space.lower()[axis];
+    samples.points.col(first + i) = q;
+    samples.labels.push_back(cspace::kJointLimitHit);
+    samples.boundary.push_back(1);
+  }
+}
+
 }  // namespace svmp::planners

@@ -77,4 +77,12 @@ ObstacleSamples sampleObstacles(const cspace::ValidityChecker& checker, const cs
                                 const ObstacleSamplerOptions& options, std::uint64_t seed,
                                 int threads);
 
+// Appends `count` boundary samples on the faces of the configuration space's box, labelled
+// cspace::kJointLimitHit: the bounds as one more region to keep away from, as the local planner's
+// joint-limit samples (thesis ch. 2.2.1). A face is drawn with probability proportional to its
+// measure in the weighted metric, the point on it uniformly. SVMP adds them when the obstacles
+// give it a single class, which one-versus-rest cannot separate from nothing.
+void addBoundsSamples(const cspace::ConfigurationSpace& space, int count, std::uint64_t seed,
+                      ObstacleSamples& samples);
+
 }  // namespace svmp::planners

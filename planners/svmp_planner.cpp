@@ -167,6 +167,10 @@ bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Te
   opt.refine_tolerance = context_.validator.resolution() / 4;
   opt.stop = stop.asFunction();
   samples_ = planners::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
+  // One obstacle (or only the self-collision region) sampled: the space's bounds are the other class,
+  // so the boundary runs between the obstacle and the bounds, where paths round it.
+  if (const std::set<int> labels(samples_.labels.begin(), samples_.labels.end()); labels.size() == 1)
+    addBoundsSamples(context_.space, options_.samples_per_tree, seed, samples_);
   times.sampling_ms += msSince(t0);
   return !samples_.stopped;
 }
@@ -265,6 +269,16 @@ void SvmpPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, Plan
   result.message = "time limit reached while sampling obstacles";
   if (sampleObstacle(seed, times, stop)) {
     result.warnings = samples_.unsampled;
+    if (samples_.size() == 0) {
+      // No obstacle to learn (none, or none within reach): the roadmap stays empty and queries are
+      // answered by the straight motion and the trees, never by a repair along a boundary.
+      result.warnings.push_back("svmp: no obstacle was sampled, so there is no boundary to learn");
+      nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
+      result.status = PlanStatus::kSolved;
+      result.message.clear();
+      fillCounters(result);
+      return;
+    }
     result.message = trainMultiSvm(times);
     if (!result.message.empty()) {
       result.status = PlanStatus::kInvalidInput;
@@ -434,8 +448,9 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     last_size = guided;
     const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
     if (budget && !before_repair) before_repair.emplace(roadmap_);
+    if (!risk_) why = "no obstacle was sampled, so no decision boundary guides a repair";
     const bool repaired =
-        budget && !stop() &&
+        budget && risk_ && !stop() &&
         repair(with_query, outcome.start_node, outcome.goal_node, widen, trail, rng, tree_rng, stop, why,
                result.times.certify_ms);
     // Before a repaired query fails, one last try of trees ten times the size of those before the

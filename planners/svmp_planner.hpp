@@ -129,7 +129,8 @@ class SvmpPlanner final : public Planner {
 
   // The steps of build(), callable one by one; each adds its time to `times`. Out of order they throw
   // std::logic_error. sampleObstacle returns false when `stop` ended it; trainMultiSvm returns "" or
-  // why it cannot train (fewer than two obstacle classes sampled).
+  // why it cannot train (fewer than two classes sampled; sampleObstacle adds the bounds as the second
+  // class, and buildRoadmap does not train with none).
   bool sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Termination& stop = {});
   std::string trainMultiSvm(PhaseTimes& times);
   bool findBoundaryMilestones(PhaseTimes& times, const Termination& stop = {});

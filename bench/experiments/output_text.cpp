@@ -56,10 +56,14 @@ Stats statsOf(std::vector<double> v) {
 }
 
 std::string jsonStats(const Stats& s) {
-  std::ostringstream o;
-  o << std::setprecision(10) << "{\"mean\": " << s.mean << ", \"std\": " << s.std << ", \"median\": " << s.median
-    << ", \"n\": " << s.count << "}";
-  return o.str();
+  // JSON has no inf or nan (a clearance with no obstacle at all is infinite): null.
+  auto number = [](double v) {
+    std::ostringstream o;
+    o << std::setprecision(10) << v;
+    return std::isfinite(v) ? o.str() : "null";
+  };
+  return "{\"mean\": " + number(s.mean) + ", \"std\": " + number(s.std) + ", \"median\": " + number(s.median) +
+         ", \"n\": " + std::to_string(s.count) + "}";
 }
 
 // std::setw counts bytes; "±" is two, so pad by code points instead.
@@ -72,6 +76,7 @@ std::string pad(const std::string& text, size_t width) {
 std::string meanStd(const Stats& s, int precision) {
   if (s.count == 0) return "-";
   std::ostringstream o;
+  if (!std::isfinite(s.mean)) return (o << s.mean, o.str());  // inf: no obstacle to be near
   o << std::fixed << std::setprecision(precision) << s.mean << " ± " << s.std;
   return o.str();
 }

@@ -133,6 +133,28 @@ TEST(DriverOutput, ObstaclesLeftUnsampledAreWarnedAbout) {
   fs::remove(file);
 }
 
+// With no obstacle at all every clearance is infinite, which JSON cannot hold: the statistics say
+// null, and the table says inf (they used to read "inf" and "-nan", and no JSON parser took the file).
+TEST(DriverOutput, InfiniteClearanceIsNullInTheJson) {
+  const Experiment run = runText(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\nobstacles: []\n"
+      "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n",
+      "svmp", 2);
+  ASSERT_EQ(run.results[0].solved(), 2);
+  const fs::path file = fs::temp_directory_path() / "svmp_driver_infinite_clearance_test.json";
+  writeJson(file.string(), run.scenario, run.options, run.results);
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("inf"), std::string::npos) << text;
+  EXPECT_EQ(text.find("nan"), std::string::npos) << text;
+  const YAML::Node clearance = YAML::LoadFile(file.string())["results"][0]["min_clearance"];
+  EXPECT_TRUE(clearance["mean"].IsNull());
+  EXPECT_EQ(clearance["n"].as<int>(), 2);
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(meanStd(statsOf({inf, inf}), 4), "inf");
+  fs::remove(file);
+}
+
 #ifdef SVMP_WITH_OMPL
 // --time-limit holds for each query of a run: a query no planner solves (the start shut in a box)
 // ends in a timeout, and the easy query after it still gets its own time and is solved. A limit for

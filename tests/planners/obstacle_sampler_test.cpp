@@ -286,6 +286,30 @@ TEST(ObstacleSampler, SameSeedGivesSameSamplesWithOneAndTwoThreads) {
   EXPECT_FALSE(other.points == one.points) << "the seed has no effect";
 }
 
+// The bounds' samples lie on the faces of the space's box, each face drawn in proportion to its
+// measure in the weighted metric: in [0, 4] x [0, 1] with weight 4 on y (scale 2) the faces x = 0, 4
+// measure 2 each, y = 0 and y = 1 measure 4 each, so a third of the samples lie on the x faces.
+TEST(ObstacleSampler, BoundsSamplesSpreadOverTheFacesByTheirMeasure) {
+  auto w = makeWorld(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [4, 1]}}\nobstacles: []\n"
+      "start: [0.5, 0.5]\ngoal: [3.5, 0.5]\nresolution: 0.01\nmetric_weights: [1.0, 4.0]\n");
+  planners::ObstacleSamples s;
+  constexpr int kCount = 3000;
+  planners::addBoundsSamples(w->space, kCount, 7, s);
+  ASSERT_EQ(s.size(), kCount);
+  int on_x_faces = 0;
+  for (int i = 0; i < kCount; ++i) {
+    const Eigen::Vector2d q = s.points.col(i);
+    EXPECT_EQ(s.labels[i], cspace::kJointLimitHit);
+    EXPECT_TRUE(s.boundary[i]);
+    const bool x_face = q.x() == 0 || q.x() == 4, y_face = q.y() == 0 || q.y() == 1;
+    EXPECT_TRUE(x_face || y_face) << q.transpose();
+    EXPECT_TRUE(q.x() >= 0 && q.x() <= 4 && q.y() >= 0 && q.y() <= 1) << q.transpose();
+    on_x_faces += x_face;
+  }
+  EXPECT_NEAR(on_x_faces / static_cast<double>(kCount), 1.0 / 3, 0.03);
+}
+
 TEST(ObstacleSampler, RejectsInvalidOptions) {
   auto w = makeWorld(kThreeObstacles);
   auto opt = samplerOptions();
