@@ -57,6 +57,10 @@ Labelling labelByHyperplane(const Eigen::MatrixXd& samples, const std::vector<in
     throw std::invalid_argument("labelling: need one region per sample and at least one sample");
   const Eigen::VectorXd d = goal - start;
   if (d.norm() < 1e-12) throw std::invalid_argument("labelling: start and goal coincide");
+  // In one dimension a hyperplane is a point: none contains both (randomNormal would never return).
+  if (d.size() < 2)
+    throw std::invalid_argument("labelling: a hyperplane through start and goal needs at least 2 dimensions, got " +
+                                std::to_string(d.size()));
   std::mt19937_64 rng(seed);
   if (method == LabellingMethod::kRandom) {
     const Eigen::VectorXd w = randomNormal(d, rng);

@@ -73,6 +73,18 @@ TEST(LocalPlanner, PandaIsInvalidInput) {
   EXPECT_NE(r.message.find("no closed-form IK"), std::string::npos) << r.message;
 }
 
+// A one-link arm has no hyperplane through start and goal (in one dimension it is a point): the
+// labelling used to draw normals orthogonal to the start-goal line for ever.
+TEST(LocalPlanner, OneJointIsInvalidInput) {
+  auto w = makeWorld(
+      "robot: {type: planar_arm, lengths: [1.0], widths: 0.05}\n"
+      "obstacles:\n  - {name: a, shape: box, size: [0.2, 0.2, 1], position: [0, 0.8, 0]}\n"
+      "start: [0.5]\ngoal: [1.0]\nresolution: 0.01\n");
+  const PlanResult r = w->planner("local")->solve(w->query(), 1);
+  EXPECT_EQ(r.status, PlanStatus::kInvalidInput) << r.message;
+  EXPECT_NE(r.message.find("at least 2 dimensions"), std::string::npos) << r.message;
+}
+
 TEST(HyperplaneLabelling, BalancedKeepsBothClassesOnRandomSets) {
   std::mt19937_64 rng(11);
   std::normal_distribution<double> normal(0, 1);
