@@ -141,10 +141,14 @@ class OmplPlanner final : public Planner {
     const Termination until = Termination::when([&stop] { return stop(); }, Termination::after(options_.time_limit));
     const ob::PlannerStatus status = planner->solve(ob::PlannerTerminationCondition([&until] { return until(); }));
     result.times.query_ms += msSince(t0);
-    ob::PlannerData data(si);
-    planner->getPlannerData(data);
-    result.milestones = data.numVertices();
-    result.roadmap_edges = data.numEdges();
+    const auto t1 = Clock::now();
+    {
+      ob::PlannerData data(si);
+      planner->getPlannerData(data);
+      result.milestones = data.numVertices();
+      result.roadmap_edges = data.numEdges();
+    }
+    result.counting_ms += msSince(t1);
     if (status == ob::PlannerStatus::EXACT_SOLUTION) {
       auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
       for (size_t i = 0; i < path->getStateCount(); ++i)

@@ -53,6 +53,9 @@ struct PlanResult {
   std::uint64_t roadmap_edges = 0;
   std::uint64_t support_vectors = 0;
   PhaseTimes times;
+  // Spent only to fill the counters above from a planner that does not keep them (an OMPL planner's
+  // roadmap copied out to count it): not the planner's work, so the driver leaves it out of the time.
+  double counting_ms = 0;
   // What the planner left out of its input, for the user to see (SVMP: obstacles it has no sample
   // of, and why: beyond the robot's reach, no configuration found hitting them).
   std::vector<std::string> warnings;
