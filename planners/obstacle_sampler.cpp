@@ -25,9 +25,12 @@ bool stopRequested(const ObstacleSamplerOptions& options, long iteration) {
   return options.stop && iteration % kStopPollInterval == 0 && options.stop();
 }
 
+// A tree node's state: interior, boundary sample, or bisected once towards no free space.
+constexpr char kInterior = 0, kBoundary = 1, kFacesNoFree = 2;
+
 struct Tree {
   std::vector<Eigen::VectorXd> nodes;
-  std::vector<char> boundary;
+  std::vector<char> boundary;  // kInterior, kBoundary or kFacesNoFree
   std::string warning;
   bool stopped = false;
 };
@@ -156,7 +159,7 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
   const Eigen::VectorXd& scale = space.metricScale();
   Eigen::MatrixXd scaled(space.dim(), n);
   tree.nodes.push_back(root);
-  tree.boundary.push_back(0);
+  tree.boundary.push_back(kInterior);
   scaled.col(0) = root.cwiseProduct(scale);
   Eigen::VectorXd q_rand(space.dim());
   const long max_iterations = static_cast<long>(options.max_iterations_factor) * n;
@@ -175,22 +178,34 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
     if (checker.hits(q_new, obstacle.id)) {
       scaled.col(static_cast<Eigen::Index>(tree.nodes.size())) = q_new.cwiseProduct(scale);
       tree.nodes.push_back(q_new);
-      tree.boundary.push_back(0);
+      tree.boundary.push_back(kInterior);
       idle = 0;
-    } else if (!tree.boundary[e]) {
-      tree.boundary[e] = 1;
-      idle = 0;
-      if (options.refine_boundary && static_cast<int>(tree.nodes.size()) < n) {
+    } else if (tree.boundary[e] != kBoundary) {
+      // q_expansion is a boundary sample when the surface it steps out of faces free space: q_new is
+      // free, or the first point beyond the surface is (a gap narrower than the step). Stepping into
+      // another obstacle across no free space (their overlap), or beyond the joint limits, marks
+      // nothing, and the node is bisected that way once (kFacesNoFree) until a q_new of its is free.
+      const bool free_new = !options.refine_boundary || checker.isValid(q_new);
+      if (!free_new && tree.boundary[e] == kFacesNoFree) continue;
+      Eigen::VectorXd inside = tree.nodes[e], outside = q_new, mid(space.dim());
+      if (options.refine_boundary) {
         // Bisection keeps `inside` hitting the obstacle and `outside` missing it.
-        Eigen::VectorXd inside = tree.nodes[e], outside = q_new, mid(space.dim());
         const double tolerance = options.refine_tolerance > 0 ? options.refine_tolerance : options.step / 256;
         while (space.distance(inside, outside) > tolerance) {
           mid = 0.5 * (inside + outside);
           (checker.hits(mid, obstacle.id) ? inside : outside) = mid;
         }
+      }
+      if (!free_new && !checker.isValid(outside)) {
+        tree.boundary[e] = kFacesNoFree;
+        continue;
+      }
+      tree.boundary[e] = kBoundary;
+      idle = 0;
+      if (options.refine_boundary && static_cast<int>(tree.nodes.size()) < n) {
         scaled.col(static_cast<Eigen::Index>(tree.nodes.size())) = inside.cwiseProduct(scale);
         tree.nodes.push_back(inside);
-        tree.boundary.push_back(1);
+        tree.boundary.push_back(kBoundary);
       }
     }
   }
@@ -256,7 +271,7 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
     for (size_t i = 0; i < trees[t].nodes.size(); ++i) {
       samples.points.col(column++) = trees[t].nodes[i];
       samples.labels.push_back(targets[t]->id);
-      samples.boundary.push_back(trees[t].boundary[i]);
+      samples.boundary.push_back(trees[t].boundary[i] == kBoundary);
     }
   }
   return samples;

@@ -136,8 +136,11 @@ TEST(ObstacleSampler, AThinTreeStopsAtItsExpansionsPerNode) {
   EXPECT_GT(full_checks, 2 * thin_checks);
 }
 
-TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
-  auto w = makeWorld(kThreeObstacles);
+// A boundary sample faces free space (thesis Algorithm 1: q_expansion is a boundary sample when q_new
+// is free), not another obstacle: two boxes overlapping over x in [0.3, 0.5] give none inside their
+// overlap, where a step into the other box used to mark 28 of them.
+void expectBoundarySamplesFaceFreeSpace(const std::string& scene) {
+  auto w = makeWorld(scene);
   const auto opt = samplerOptions();
   const auto s = planners::sampleObstacles(w->checker, w->space, opt, 22, 1);
   const Eigen::VectorXd& scale = w->space.metricScale();
@@ -155,7 +158,7 @@ TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
         Eigen::VectorXd p = q;
         p[0] += radius * opt.step * std::cos(angle) / scale[0];
         p[1] += radius * opt.step * std::sin(angle) / scale[1];
-        found = w->space.contains(p) && !w->checker.hits(p, s.labels[i]);
+        found = w->space.contains(p) && w->checker.isValid(p);
       }
       if (found) break;
     }
@@ -163,6 +166,22 @@ TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
                        << s.labels[i] << " has no free configuration within one step";
   }
   EXPECT_GT(checked, 0);
+}
+
+TEST(ObstacleSampler, EveryBoundarySampleHasAFreeConfigurationWithinOneStep) {
+  expectBoundarySamplesFaceFreeSpace(kThreeObstacles);
+  expectBoundarySamplesFaceFreeSpace(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: left, shape: box, size: [0.4, 0.6, 1.0], position: [0.3, 0.5, 0]}\n"
+      "  - {name: right, shape: box, size: [0.4, 0.6, 1.0], position: [0.5, 0.5, 0]}\n"
+      "start: [0.05, 0.1]\ngoal: [0.95, 0.9]\nresolution: 0.01\n");
+}
+
+TEST(ObstacleSampler, DeepInteriorSamplesAreNotBoundary) {
+  auto w = makeWorld(kThreeObstacles);
+  const auto opt = samplerOptions();
+  const auto s = planners::sampleObstacles(w->checker, w->space, opt, 22, 1);
   // Interior samples deep inside a box are never marked: the left box spans x in [0.1, 0.3].
   for (int i = 0; i < s.size(); ++i) {
     const Eigen::VectorXd q = s.points.col(i);

@@ -325,7 +325,7 @@ TEST(RoadmapQuery, SvmpTreesJoinWhatTheLazyRoadmapDoesNotBeforeAnEagerPass) {
   cspace::ParameterSet without_trees = w->scenario.paramsFor("svmp");
   without_trees.set("lazy_trees", "0");
   int joined = 0;
-  for (std::uint64_t seed : {4, 8, 9}) {
+  for (std::uint64_t seed : {1, 9, 10}) {
     auto with = w->planner("svmp");
     auto without = makePlanner("svmp", w->context, without_trees);
     const PlanResult a = with->solve(w->query(), seed), b = without->solve(w->query(), seed);
