@@ -272,7 +272,7 @@ void SvmpPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, Plan
     if (samples_.size() == 0) {
       // No obstacle to learn (none, or none within reach): the roadmap stays empty and queries are
       // answered by the straight motion and the trees, never by a repair along a boundary.
-      result.warnings.push_back("svmp: no obstacle was sampled, so there is no boundary to learn");
+      result.warnings.push_back("no obstacle was sampled, so there is no boundary to learn");
       nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
       result.status = PlanStatus::kSolved;
       result.message.clear();
