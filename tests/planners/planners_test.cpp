@@ -1,5 +1,6 @@
-// The planners end to end: valid paths, invalid queries, determinism, the factory's errors, and the
-// narrow passage that SVMP's boundary milestones are made for (its repair: repair_test.cpp).
+// The planners end to end: valid paths, invalid queries, SVMP with fewer than two obstacle classes,
+// determinism, the factory's errors, and the narrow passage that SVMP's boundary milestones are made
+// for (its repair: repair_test.cpp).
 #include <gtest/gtest.h>
 
 #include "planners/path_simplifier.hpp"
