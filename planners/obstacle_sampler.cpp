@@ -183,8 +183,8 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
     } else if (tree.boundary[e] != kBoundary) {
       // q_expansion is a boundary sample when the surface it steps out of faces free space: q_new is
       // free, or the first point beyond the surface is (a gap narrower than the step). Stepping into
-      // another obstacle across no free space (their overlap), or beyond the joint limits, marks
-      // nothing, and the node is bisected that way once (kFacesNoFree) until a q_new of its is free.
+      // another obstacle across no free space (their overlap) marks nothing, and the node is bisected
+      // that way once (kFacesNoFree) until a q_new of its is free.
       const bool free_new = !options.refine_boundary || checker.isValid(q_new);
       if (!free_new && tree.boundary[e] == kFacesNoFree) continue;
       Eigen::VectorXd inside = tree.nodes[e], outside = q_new, mid(space.dim());
