@@ -7,8 +7,8 @@
 // point beyond the obstacle's surface towards it is (a gap narrower than the step), the node it grew
 // from, q_expansion, is marked a boundary sample (the thesis' "otherwise": q_new free); q_new is dropped.
 // A step into another obstacle across no free space marks nothing: the surface there faces no free
-// space (73 files, 60 seeds: every run solved, time 0.95x geometric mean,
-// 0.53-1.61x; docs/reproduction.md, "Boundary samples face free space"). Each tree stops at N nodes (or when it
+// space (73 files, 60 seeds: every run solved, time 0.95x geometric mean, 0.53-1.61x;
+// docs/reproduction.md, "Boundary samples face free space"). Each tree stops at N nodes (or when it
 // stalls, max_idle_factor, or is thinner than the step, max_expansions_per_node).
 // Surface refinement (on by default; the thesis' own future direction, ch. 3.5: "sampling methods that
 // focus on boundary samples"): the first time a node is marked boundary, the segment from it to the free
