@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bench/experiments/driver_options.hpp"
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
@@ -45,9 +47,14 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--runs" && i + 1 < argc)
-      runs = std::max(1, std::atoi(argv[++i]));
-    else if (arg == "--trials")
+    if (arg == "--runs") {
+      try {
+        runs = static_cast<int>(experiments::parseLong("--runs", i + 1 < argc ? argv[++i] : "", 1, 100000));
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "svpp-timing: " << e.what() << "\n";
+        return 2;
+      }
+    } else if (arg == "--trials")
       list_trials = true;
     else if (arg == "--set" && i + 1 < argc) {
       const std::string kv = argv[++i];
