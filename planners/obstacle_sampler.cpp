@@ -184,7 +184,8 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
       // q_expansion is a boundary sample when the surface it steps out of faces free space: q_new is
       // free, or the first point beyond the surface is (a gap narrower than the step). Stepping into
       // another obstacle across no free space (their overlap) marks nothing, and the node is bisected
-      // that way once (kFacesNoFree) until a q_new of its is free.
+      // that way once (kFacesNoFree) until a q_new of its is free. Without refinement there is no
+      // point beyond the surface to ask, and every miss marks the node, as before this rule.
       const bool free_new = !options.refine_boundary || checker.isValid(q_new);
       if (!free_new && tree.boundary[e] == kFacesNoFree) continue;
       Eigen::VectorXd inside = tree.nodes[e], outside = q_new, mid(space.dim());

@@ -276,11 +276,7 @@ void SvmpPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, Plan
       nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
       result.status = PlanStatus::kSolved;
       result.message.clear();
-      fillCounters(result);
-      return;
-    }
-    result.message = trainMultiSvm(times);
-    if (!result.message.empty()) {
+    } else if (result.message = trainMultiSvm(times); !result.message.empty()) {
       result.status = PlanStatus::kInvalidInput;
     } else if (stop()) {
       result.status = PlanStatus::kTimeout;

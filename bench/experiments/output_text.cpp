@@ -76,8 +76,10 @@ std::string pad(const std::string& text, size_t width) {
 std::string meanStd(const Stats& s, int precision) {
   if (s.count == 0) return "-";
   std::ostringstream o;
-  if (!std::isfinite(s.mean)) return (o << s.mean, o.str());  // inf: no obstacle to be near
-  o << std::fixed << std::setprecision(precision) << s.mean << " ± " << s.std;
+  if (std::isfinite(s.mean))
+    o << std::fixed << std::setprecision(precision) << s.mean << " ± " << s.std;
+  else
+    o << s.mean;  // inf: no obstacle to be near
   return o.str();
 }
 
