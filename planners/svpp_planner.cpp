@@ -31,12 +31,15 @@ SvppOptions SvppOptions::fromParameters(const cspace::ParameterSet& params) {
 }
 
 std::string SvppOptions::validate() const {
+  auto positiveOrDerived = [](double v) { return v == kDerived || (v > 0 && std::isfinite(v)); };
   std::ostringstream why;
   if (virtual_samples < 1)
     why << "virtual_samples must be >= 1, got " << virtual_samples;
-  else if (!(virtual_distance > 0 && guide_distance > 0 && guide_spacing > 0 && step > 0))
+  else if (!(positiveOrDerived(virtual_distance) && positiveOrDerived(guide_distance) &&
+             positiveOrDerived(guide_spacing) && positiveOrDerived(step)))
     why << "virtual_distance, guide_distance, guide_spacing and step must be positive";
-  else if (!(guide_distance > virtual_distance))
+  else if (virtual_distance != kDerived && guide_distance != kDerived &&
+           !(guide_distance > virtual_distance))
     why << "guide_distance (" << guide_distance << ") must exceed virtual_distance ("
         << virtual_distance << "): the guides wrap the virtual obstacles";
   else if (patterns < 0 || max_patterns < 1 || max_steps < 0)
@@ -45,9 +48,25 @@ std::string SvppOptions::validate() const {
     why << "patterns (" << patterns << ") must not exceed max_patterns (" << max_patterns << ")";
   else if (!(search_angle_deg > 0 && search_angle_deg < 360))
     why << "search_angle_deg must lie in (0, 360), got " << search_angle_deg;
-  else if (!(gamma > 0 && C > 0 && eps > 0) || !std::isfinite(gamma) || !std::isfinite(C))
+  else if (!(positiveOrDerived(gamma) && C > 0 && eps > 0) || !std::isfinite(C))
     why << "gamma, C and eps must be positive and finite";
   return why.str();
+}
+
+SvppOptions SvppOptions::resolvedFor(const cspace::ConfigurationSpace& space, int obstacles) const {
+  const Eigen::VectorXd sides = space.upper() - space.lower();
+  const int dim = space.dim();
+  const double spacing = std::pow(sides.prod() / std::max(obstacles, 1), 1.0 / dim);
+  const double s = std::min(sides.mean() / kPaperSide,
+                            spacing / (dim == 2 ? kPaperSpacing2d : kPaperSpacing3d));
+  SvppOptions o = *this;
+  for (auto [value, paper] : {std::pair{&o.virtual_distance, kPaperVirtualDistance},
+                              {&o.guide_distance, kPaperGuideDistance},
+                              {&o.guide_spacing, kPaperGuideSpacing},
+                              {&o.step, kPaperStep}})
+    if (*value == kDerived) *value = paper * s;
+  if (o.gamma == kDerived) o.gamma = kPaperGamma / (s * s);
+  return o;
 }
 
 SampleLayout SvppOptions::layout() const {
@@ -78,14 +97,17 @@ svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, 
 
 SVMP_REGISTER_PLANNER("svpp",
                       [](const PlanningContext& context, const cspace::ParameterSet& params) {
-                        const SvppOptions o = SvppOptions::fromParameters(params);
+                        const SvppOptions o =
+                            SvppOptions::fromParameters(params).resolvedFor(
+                                context.space, context.checker.environment().numReal());
                         if (const std::string why = o.validate(); !why.empty())
                           throw cspace::ScenarioError("planners.svpp: " + why);
                         return std::make_unique<SvppPlanner>(context, o);
                       });
 
 SvppPlanner::SvppPlanner(const PlanningContext& context, SvppOptions options)
-    : Planner(context), options_(options) {
+    : Planner(context),
+      options_(options.resolvedFor(context.space, context.checker.environment().numReal())) {
   if (const std::string why = options_.validate(); !why.empty())
     throw std::invalid_argument("svpp: " + why);
 }

@@ -32,25 +32,38 @@ namespace svmp::planners {
 
 struct SvppOptions {
   static constexpr int kPaperPatterns2d = 20, kPaperPatterns3d = 10;
-  int virtual_samples = 3;         // N_v
-  double virtual_distance = 0.05;  // d_v
-  double guide_distance = 0.2;     // d_g
-  double guide_spacing = 0.1;      // d_p
+  // Unset (kDerived) lengths and gamma are the paper's values scaled to the problem (resolvedFor):
+  // lengths by s, gamma by 1 / s^2. The paper adjusts them "according to the space size" (sec.
+  // III-C), for fields of equal obstacles about 0.45 (2-D) and 0.74 (3-D) apart; s is the smaller of
+  // the space's mean side / 2 and the obstacles' mean spacing, (volume / count)^(1/dim), over the
+  // paper's. So its problems keep its values, a scaled problem gets the scaled path, and the kernel
+  // resolves neighbouring obstacles in a denser or sparser field.
+  static constexpr double kDerived = -1, kPaperSide = 2;
+  static constexpr double kPaperSpacing2d = 0.4472135954999579;  // (2 x 2 / 20)^(1/2)
+  static constexpr double kPaperSpacing3d = 0.7368062997280773;  // (2 x 2 x 2 / 20)^(1/3)
+  static constexpr double kPaperVirtualDistance = 0.05, kPaperGuideDistance = 0.2,
+                          kPaperGuideSpacing = 0.1, kPaperStep = 0.05, kPaperGamma = 10;
+  int virtual_samples = 3;                // N_v
+  double virtual_distance = kDerived;     // d_v
+  double guide_distance = kDerived;       // d_g
+  double guide_spacing = kDerived;        // d_p
   int patterns = 0;                // N_p; 0: the paper's, 20 in 2-D and 10 in 3-D
   int max_patterns = 200;          // patterns tried at most while no path was found
   double search_angle_deg = 120;   // theta_s
-  double step = 0.05;              // d_s
+  double step = kDerived;          // d_s
   // Step limit of one surface following; 0: 3 |goal - start| / d_s (a path three times the straight
   // line's length; the paper gives no number).
   int max_steps = 0;
   // SVM^light's -g: k(a, b) = exp(-gamma |a - b|^2); the paper's "size of Gaussian kernel is 10".
-  double gamma = 10;
+  double gamma = kDerived;
   double C = 1000;    // soft-margin weight (the paper's gamma of eq. 6)
   double eps = 1e-3;  // SMO stopping tolerance (SVM^light's default)
 
   static SvppOptions fromParameters(const cspace::ParameterSet& params);
   std::string validate() const;  // "" when usable
   bool operator==(const SvppOptions&) const = default;
+  // These options with every kDerived value scaled to `space` holding `obstacles` obstacles.
+  SvppOptions resolvedFor(const cspace::ConfigurationSpace& space, int obstacles) const;
   int patternsFor(int dim) const {
     return patterns > 0 ? patterns : dim == 2 ? kPaperPatterns2d : kPaperPatterns3d;
   }

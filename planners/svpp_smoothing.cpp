@@ -71,8 +71,9 @@ std::vector<Eigen::VectorXd> withoutRepeats(const std::vector<Eigen::VectorXd>& 
 SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
                              const cspace::ValidityChecker& checker,
                              const cspace::MotionValidator& certifier,
-                             const cspace::ConfigurationSpace& space, const SvppOptions& options,
+                             const cspace::ConfigurationSpace& space, const SvppOptions& given_options,
                              svm::SolverWorkspace* workspace) {
+  const SvppOptions options = given_options.resolvedFor(space, checker.environment().numReal());
   SvmSmoothing out;
   out.path = given;
   const auto* point = dynamic_cast<const robots::PointRobot*>(&checker.robot());

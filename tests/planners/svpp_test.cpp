@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 #include <numbers>
+#include <sstream>
 
 #include "cspace/certified_motion_validator.hpp"
 #include "planners/svpp_planner.hpp"
@@ -244,6 +245,58 @@ TEST(SvppTest, BadParametersAndRobotsAreRejected) {
   const PlanResult r = makePlanner("svpp", arm->context, {})->solve(arm->query(), 1);
   EXPECT_EQ(r.status, PlanStatus::kInvalidInput);
   EXPECT_NE(r.message.find("point robots"), std::string::npos);
+}
+
+// The paper's 2 x 2 field of 0.2 boxes, every length times `scale`.
+std::string scaledField(double scale) {
+  const double boxes[][2] = {{0.5, 0.4}, {0.7, 1.1}, {1.0, 0.7}, {1.2, 1.5}, {1.45, 0.95}, {0.4, 1.6}};
+  std::ostringstream yaml;
+  yaml.precision(17);
+  yaml << "robot: {type: point, bounds: {lower: [0, 0], upper: [" << 2 * scale << ", " << 2 * scale
+       << "]}}\nobstacles:\n";
+  for (const auto& b : boxes)
+    yaml << "  - {shape: box, size: [" << 0.2 * scale << ", " << 0.2 * scale << ", 1], position: ["
+         << b[0] * scale << ", " << b[1] * scale << ", 0]}\n";
+  yaml << "start: [" << 0.1 * scale << ", " << 0.1 * scale << "]\ngoal: [" << 1.9 * scale << ", "
+       << 1.9 * scale << "]\nresolution: " << 0.005 * scale << "\n";
+  return yaml.str();
+}
+
+TEST(SvppTest, UnsetLengthsScaleWithTheSpaceSoAScaledProblemGetsTheScaledPath) {
+  const CertifiedWorld paper(scaledField(1));
+  const cspace::ConfigurationSpace& space = paper.world->space;
+  // The paper's values for its 20 obstacles in 2 x 2, and for this sparser field of 6.
+  for (const int obstacles : {20, 6}) {
+    const SvppOptions resolved = SvppOptions{}.resolvedFor(space, obstacles);
+    EXPECT_DOUBLE_EQ(resolved.step, SvppOptions::kPaperStep);
+    EXPECT_DOUBLE_EQ(resolved.gamma, SvppOptions::kPaperGamma);
+    EXPECT_DOUBLE_EQ(resolved.guide_distance, SvppOptions::kPaperGuideDistance);
+  }
+  // 80 obstacles in the same space: half the spacing, half the lengths.
+  EXPECT_DOUBLE_EQ(SvppOptions{}.resolvedFor(space, 80).step, SvppOptions::kPaperStep / 2);
+  EXPECT_DOUBLE_EQ(SvppOptions{}.resolvedFor(space, 80).gamma, 4 * SvppOptions::kPaperGamma);
+  EXPECT_EQ(SvppOptions{.step = 0.3}.resolvedFor(space, 80).step, 0.3);  // given, kept
+
+  auto planner = paper.planner();
+  const PlanResult reference = planner->solve(paper.world->query(), 3);
+  ASSERT_TRUE(reference.solved()) << reference.message;
+  for (const double scale : {0.01, 40.0}) {
+    SCOPED_TRACE(scale);
+    const CertifiedWorld w(scaledField(scale));
+    EXPECT_NEAR(SvppOptions{}.resolvedFor(w.world->space, 6).step, SvppOptions::kPaperStep * scale,
+                1e-12 * scale);
+    const PlanResult r = w.planner()->solve(w.world->query(), 3);
+    ASSERT_TRUE(r.solved()) << r.message;
+    EXPECT_TRUE(r.certified);
+    EXPECT_TRUE(denselyFree(*w.world, r.path));
+    ASSERT_EQ(r.path.size(), reference.path.size());
+    // The same up to the solver's tolerance (eps = 1e-3 on float kernel columns): within 1% of a
+    // step. With the paper's absolute values both fields fail, every pattern in collision (0.01) or
+    // at the step limit (40).
+    for (size_t i = 0; i < r.path.size(); ++i)
+      EXPECT_LT((r.path[i] / scale - reference.path[i]).norm(), 0.01 * SvppOptions::kPaperStep)
+          << "waypoint " << i;
+  }
 }
 
 TEST(SvppTest, SmoothingFollowsTheSeparatingLineOfAGivenPath) {
