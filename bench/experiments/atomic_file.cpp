@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -22,6 +23,8 @@ void writeFileAtomically(const std::string& file, const std::string& text) {
 }
 
 void checkWritable(const std::string& flag, const std::string& file) {
+  if (std::filesystem::is_directory(file))
+    throw std::runtime_error("flag " + flag + ": cannot write '" + file + "': it is a directory");
   const std::string probe = file + ".tmp";
   errno = 0;
   std::ofstream out(probe, std::ios::binary | std::ios::trunc);

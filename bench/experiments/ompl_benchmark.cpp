@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/scenario_check.hpp"
 #include "bench/experiments/driver_options.hpp"
 #include "bench/experiments/ompl_log.hpp"
 #include "cspace/scenario/scenario.hpp"
@@ -100,6 +101,7 @@ int main(int argc, char** argv) {
   try {
     experiments::checkWritable("--log", flags.log);
     cspace::Scenario scenario = cspace::loadScenario(flags.scenario);
+    experiments::requireFreeEndpoints(scenario);
     if (flags.query >= static_cast<int>(scenario.queries.size()))
       throw std::invalid_argument("flag --query: " + std::to_string(flags.query) + ": the scenario has " +
                                   std::to_string(scenario.queries.size()) + " queries");

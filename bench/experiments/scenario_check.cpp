@@ -83,4 +83,19 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
   return ok;
 }
 
+void requireFreeEndpoints(const cspace::Scenario& scenario) {
+  const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
+  for (size_t i = 0; i < scenario.queries.size(); ++i) {
+    const auto& q = scenario.queries[i];
+    for (const auto& [key, config] : {std::pair{"start", &q.start}, std::pair{"goal", &q.goal}}) {
+      const int hit = checker.check(*config);
+      if (hit == cspace::kFree) continue;
+      const std::string field =
+          scenario.queries_listed ? "queries[" + std::to_string(i) + "]." + key : std::string(key);
+      throw cspace::ScenarioError(scenario.path + ": field '" + field + "': configuration " + format(*config) +
+                                  " is " + cspace::describeHit(*scenario.environment, hit));
+    }
+  }
+}
+
 }  // namespace svmp::experiments

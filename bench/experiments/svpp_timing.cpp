@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench/experiments/driver_options.hpp"
+#include "bench/experiments/scenario_check.hpp"
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
@@ -79,6 +80,7 @@ int main(int argc, char** argv) {
   try {
     for (const std::string& file : files) {
       const cspace::Scenario s = cspace::loadScenario(file);
+      experiments::requireFreeEndpoints(s);
       const cspace::ConfigurationSpace space = s.makeSpace();
       const cspace::CollisionChecker checker(s.robot, s.environment, s.self_collision);
       const cspace::DiscreteMotionValidator validator(checker, space, s.resolution);

@@ -319,6 +319,7 @@ Scenario parseScenarioUnguarded(const std::string& yaml_text, const std::string&
     throw ScenarioError(source + ": field 'obstacles': " + e.what());
   }
   s.queries = readQueries(r, root, *s.robot);
+  s.queries_listed = static_cast<bool>(root["queries"]);
   s.metric_weights = Eigen::VectorXd::Ones(dof);
   if (const YAML::Node w = root["metric_weights"]) {
     if (!w.IsSequence() || w.size() != static_cast<size_t>(dof))

@@ -51,6 +51,7 @@ struct Scenario {
   std::shared_ptr<const robots::Robot> robot;
   std::shared_ptr<const Environment> environment;
   std::vector<Query> queries;
+  bool queries_listed = false;  // the file gave `queries: [...]`, not a top-level start and goal
   double resolution = 0.01;  // checking resolution in the weighted metric
   Eigen::VectorXd metric_weights;
   bool self_collision = true;
