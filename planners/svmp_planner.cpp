@@ -35,7 +35,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.repair_samples = static_cast<int>(params.getInt("repair_samples", o.repair_samples, 2, 1000000));
   o.repair_trees = params.getBool("repair_trees", o.repair_trees);
   o.lazy_trees = static_cast<int>(params.getInt("lazy_trees", o.lazy_trees, 0, 1000000));
-  o.tree_range = params.getDouble("tree_range", o.tree_range, -1, 1e6);
+  o.tree_range = params.getDouble("tree_range", o.tree_range, 1e-9, 1e6);
   o.interior_fraction = params.getDouble("interior_fraction", o.interior_fraction, 0, 1);
   o.tree_expansions_per_node =
       static_cast<int>(params.getInt("tree_expansions_per_node", o.tree_expansions_per_node, 0, 1000000));

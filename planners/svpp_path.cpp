@@ -117,6 +117,8 @@ const char* followStatusName(FollowStatus status) {
       return "left the space";
     case FollowStatus::kTooLong:
       return "longer than a path already found";
+    case FollowStatus::kStopped:
+      return "stopped by the time limit";
   }
   return "?";
 }
@@ -134,6 +136,10 @@ FollowResult followSurface2d(const svm::BinaryModel& model, const Eigen::VectorX
   };
   for (int step = 0; step < o.max_steps; ++step) {
     if (closeToGoal(r, goal, o)) return r;
+    if (o.stop && o.stop()) {
+      r.status = FollowStatus::kStopped;
+      return r;
+    }
     double angles[kArcSamples], values[kArcSamples];
     for (int k = 0; k < kArcSamples; ++k) {
       angles[k] = direction - o.search_angle / 2 + o.search_angle * k / (kArcSamples - 1);
@@ -184,6 +190,10 @@ FollowResult followSurface3d(const svm::BinaryModel& model, const Eigen::VectorX
   Eigen::Vector3d grad;
   for (int step = 0; step < o.max_steps; ++step) {
     if (closeToGoal(r, goal, o)) return r;
+    if (o.stop && o.stop()) {
+      r.status = FollowStatus::kStopped;
+      return r;
+    }
     const Eigen::Vector3d p = r.path.back();
     const Eigen::Vector3d normal = fitSurfacePlane(full, p, o.step);
     Eigen::Vector3d direction = target(p) - p;

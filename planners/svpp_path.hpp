@@ -12,7 +12,7 @@
 //   towards the target (the goal: the nominal line's end) is projected on that plane, a step d_s taken
 //   along it, and the point moved back onto V = 0 by Newton steps along grad V; |V| >= 1 after that ends
 //   the search.
-// A point outside the space's bounds ends the search, and so does a path that must end longer than
+// A point outside the space's bounds ends the search, as does `stop`, and a path that must end longer than
 // `max_length` (length so far + straight distance left; the planner passes the best path found so
 // far: a longer one cannot win).
 // Pure functions of a const model: thread-safe.
@@ -31,9 +31,10 @@ struct SurfaceFollowing {
   int max_steps = 500;
   double max_length = std::numeric_limits<double>::infinity();
   Eigen::VectorXd lower, upper;  // the space's bounds
+  std::function<bool()> stop;    // polled every step when set: the planner's time limit
 };
 
-enum class FollowStatus { kReached, kNoSafePoint, kStepLimit, kLeftSpace, kTooLong };
+enum class FollowStatus { kReached, kNoSafePoint, kStepLimit, kLeftSpace, kTooLong, kStopped };
 const char* followStatusName(FollowStatus status);
 
 struct FollowResult {

@@ -53,6 +53,22 @@ std::string SvppOptions::validate() const {
   return why.str();
 }
 
+std::string SvppOptions::validateFor(const cspace::ConfigurationSpace& space) const {
+  if (std::string why = validate(); !why.empty()) return why;
+  const double diagonal = (space.upper() - space.lower()).norm();
+  // Guides every d_p along a line at most the diagonal long, and in 3-D across a plane's width.
+  const double along = diagonal / guide_spacing + 2;
+  const double across = space.dim() == 3 ? (diagonal + 2 * guide_distance) / guide_spacing + 2 : 1;
+  std::ostringstream why;
+  if (diagonal / step > kMaxStepsPerDiagonal)
+    why << "step (" << step << ") is below 1/" << kMaxStepsPerDiagonal << " of the space's diagonal ("
+        << diagonal << ")";
+  else if (2 * along * across > kMaxGuideSamples)
+    why << "guide_spacing (" << guide_spacing << ") gives up to " << 2 * along * across
+        << " guide samples in this space, more than " << kMaxGuideSamples;
+  return why.str();
+}
+
 SvppOptions SvppOptions::resolvedFor(const cspace::ConfigurationSpace& space, int obstacles) const {
   const Eigen::VectorXd sides = space.upper() - space.lower();
   const int dim = space.dim();
@@ -100,15 +116,20 @@ SVMP_REGISTER_PLANNER("svpp",
                         const SvppOptions o =
                             SvppOptions::fromParameters(params).resolvedFor(
                                 context.space, context.checker.environment().numReal());
-                        if (const std::string why = o.validate(); !why.empty())
-                          throw cspace::ScenarioError("planners.svpp: " + why);
+                        if (const std::string why = o.validateFor(context.space); !why.empty()) {
+                          // Every message starts with the parameter it is about.
+                          const std::string key = why.substr(0, why.find_first_of(" ,("));
+                          throw cspace::ScenarioError(params.declarations().count(key)
+                                                          ? params.describe(key) + ": " + why
+                                                          : "planners.svpp: " + why);
+                        }
                         return std::make_unique<SvppPlanner>(context, o);
                       });
 
 SvppPlanner::SvppPlanner(const PlanningContext& context, SvppOptions options)
     : Planner(context),
       options_(options.resolvedFor(context.space, context.checker.environment().numReal())) {
-  if (const std::string why = options_.validate(); !why.empty())
+  if (const std::string why = options_.validateFor(context.space); !why.empty())
     throw std::invalid_argument("svpp: " + why);
 }
 
@@ -153,7 +174,7 @@ bool SvppPlanner::validPath(const std::vector<Eigen::VectorXd>& path) const {
 }
 
 SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pattern,
-                                  double best_length, PhaseTimes& times) {
+                                  double best_length, const Termination& stop, PhaseTimes& times) {
   SvppTrial trial;
   trial.pattern = pattern;
   auto t0 = Clock::now();
@@ -168,6 +189,7 @@ SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pat
   t0 = Clock::now();
   SurfaceFollowing following = options_.following(query, space.lower(), space.upper());
   following.max_length = best_length;
+  following.stop = stop.asFunction();
   if (space.dim() == 2)
     trial.follow =
         followSurface2d(trial.model, query.start, query.goal, trace_.frame.along, following);
@@ -210,7 +232,7 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       break;
     }
     tried.insert(pattern);
-    trace_.trials.push_back(tryPattern(query, pattern, best_length, result.times));
+    trace_.trials.push_back(tryPattern(query, pattern, best_length, stop, result.times));
     if (trace_.trials.back().valid)
       best_length = std::min(best_length, trace_.trials.back().follow.length);
     if (static_cast<int>(tried.size()) >= wanted && std::isfinite(best_length)) break;
@@ -253,6 +275,12 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     return;
   }
   if (result.status == PlanStatus::kTimeout) return;
+  if (stop()) {
+    result.status = PlanStatus::kTimeout;
+    result.message = "time limit reached after " + std::to_string(trace_.trials.size()) + " patterns";
+    result.path.clear();
+    return;
+  }
   std::map<std::string, int> reasons;
   for (const SvppTrial& t : trace_.trials)
     ++reasons[t.follow.reached() ? (t.valid ? "not certified" : "in collision")

@@ -61,6 +61,11 @@ struct SvppOptions {
 
   static SvppOptions fromParameters(const cspace::ParameterSet& params);
   std::string validate() const;  // "" when usable
+  // validate(), and the resolved lengths bounded in `space`: at most kMaxStepsPerDiagonal steps
+  // across its diagonal and kMaxGuideSamples guide samples (a bound over every query), so no
+  // setting makes a training set or a surface following that memory or time cannot hold.
+  static constexpr double kMaxStepsPerDiagonal = 1e6, kMaxGuideSamples = 50000;
+  std::string validateFor(const cspace::ConfigurationSpace& space) const;
   bool operator==(const SvppOptions&) const = default;
   // These options with every kDerived value scaled to `space` holding `obstacles` obstacles.
   SvppOptions resolvedFor(const cspace::ConfigurationSpace& space, int obstacles) const;
@@ -117,7 +122,7 @@ class SvppPlanner final : public Planner {
 
  private:
   SvppTrial tryPattern(const cspace::Query& query, const Pattern& pattern, double best_length,
-                       PhaseTimes& times);
+                       const Termination& stop, PhaseTimes& times);
   bool validPath(const std::vector<Eigen::VectorXd>& path) const;
 
   SvppOptions options_;

@@ -76,6 +76,10 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
   const SvppOptions options = given_options.resolvedFor(space, checker.environment().numReal());
   SvmSmoothing out;
   out.path = given;
+  if (const std::string why = options.validateFor(space); !why.empty()) {
+    out.why = "svpp parameters: " + why;
+    return out;
+  }
   const auto* point = dynamic_cast<const robots::PointRobot*>(&checker.robot());
   if (!point) {
     out.why = "SVM smoothing needs a point robot in 2-D or 3-D";
@@ -181,7 +185,7 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
   query.goal = goal;
   SurfaceFollowing following = options.following(query, space.lower(), space.upper());
   if (options.max_steps == 0)
-    following.max_steps = static_cast<int>(std::ceil(3 * path.length() / options.step));
+    following.max_steps = static_cast<int>(std::min(std::ceil(3 * path.length() / options.step), 1e7));
   const FollowResult follow =
       dim == 2 ? followSurface2d(model, start, goal, path.direction(0), following)
                : followSurface3d(

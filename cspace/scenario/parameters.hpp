@@ -51,6 +51,8 @@ class ParameterSet {
                         const std::set<std::string>& allowed = {}) const;
   // Throws ScenarioError naming keys that were set but never read.
   void requireAllUsed() const;
+  // Where `key` is set, for an error about it: "FILE: field 'planners.P.KEY'", or the flag that set it.
+  std::string describe(const std::string& key) const { return field(key); }
   const std::map<std::string, std::string>& values() const { return values_; }
   // Every key a getter read, with its kind, default and bounds (in the order of the keys).
   const std::map<std::string, ParameterDeclaration>& declarations() const { return declared_; }

@@ -237,6 +237,14 @@ TEST(SvppTest, BadParametersAndRobotsAreRejected) {
   EXPECT_NE(message("step_size", "0.1").find("step_size"), std::string::npos);
   EXPECT_EQ(message("patterns", "5"), "accepted");
   EXPECT_THROW(SvppPlanner(w.context, SvppOptions{.virtual_samples = 0}), std::invalid_argument);
+  // Lengths that would fill memory or never end are refused with the file and field. A spacing of
+  // 1e-6 asked for 5.7 million guide samples in this 2 x 2 space (1 GB, 42 s).
+  EXPECT_NE(message("guide_spacing", "1e-6").find("test.yaml: field 'planners.svpp.guide_spacing': "
+                                                  "guide_spacing (1e-06) gives up to"),
+            std::string::npos);
+  EXPECT_NE(message("step", "1e-9").find("field 'planners.svpp.step': step (1e-09) is below"),
+            std::string::npos);
+  EXPECT_EQ(message("step", "1e-5"), "accepted");
 
   const auto arm = test::makeWorld(
       "robot: {type: planar_arm, lengths: [1, 1], widths: 0.05}\n"
@@ -297,6 +305,19 @@ TEST(SvppTest, UnsetLengthsScaleWithTheSpaceSoAScaledProblemGetsTheScaledPath) {
       EXPECT_LT((r.path[i] / scale - reference.path[i]).norm(), 0.01 * SvppOptions::kPaperStep)
           << "waypoint " << i;
   }
+}
+
+TEST(SvppTest, TheTimeLimitStopsASurfaceFollowing) {
+  const CertifiedWorld w(kSymmetric);
+  // Steps of 1e-5: up to 480,000 a pattern. The limit fires at its 100th poll, within the first
+  // pattern's following (the pattern loop polls once before it).
+  auto planner = w.planner(cspace::ParameterSet("test.yaml", "planners.svpp.", {{"step", "1e-5"}}));
+  int polls = 0;
+  const PlanResult r = planner->solve(w.world->query(), 1, Termination::when([&] { return ++polls > 100; }));
+  EXPECT_EQ(r.status, PlanStatus::kTimeout) << r.message;
+  const auto& trials = dynamic_cast<const SvppPlanner&>(*planner).trace().trials;
+  ASSERT_FALSE(trials.empty());
+  EXPECT_EQ(trials.back().follow.status, FollowStatus::kStopped);
 }
 
 TEST(SvppTest, SmoothingFollowsTheSeparatingLineOfAGivenPath) {
