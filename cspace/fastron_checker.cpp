@@ -42,7 +42,7 @@ FastronCheckerOptions FastronCheckerOptions::fromParameters(const std::string& n
   o.model.beta = params.getDouble("beta", o.model.beta, 1e-9, 1e9);
   o.model.max_updates = static_cast<int>(params.getInt("max_updates", o.model.max_updates, 1, 100000000));
   o.model.max_support = static_cast<int>(params.getInt("max_support", o.model.max_support, 1, 10000000));
-  o.initial_samples = static_cast<int>(params.getInt("initial_samples", o.initial_samples, 1, 10000000));
+  o.initial_samples = static_cast<int>(params.getInt("initial_samples", o.initial_samples, 1, 1000000));
   o.exploit_samples = static_cast<int>(params.getInt("exploit_samples", o.exploit_samples, 0, 10000000));
   o.exploit_sigma = params.getDouble("exploit_sigma", o.exploit_sigma, 1e-9, 10);
   o.explore_samples = static_cast<int>(params.getInt("explore_samples", o.explore_samples, 0, 10000000));
@@ -116,7 +116,7 @@ double FastronChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) con
 bool FastronChecker::checksSelfCollision() const { return exact_ && exact_->checksSelfCollision(); }
 
 FastronLearnStats FastronChecker::learn(const ValidityChecker& exact, std::vector<Eigen::VectorXd> qs,
-                                        std::vector<double> alpha) {
+                                        std::vector<double> alpha, const std::function<bool()>& stop) {
   exact_ = &exact;
   FastronLearnStats stats;
   const int n = static_cast<int>(qs.size());
@@ -129,7 +129,7 @@ FastronLearnStats FastronChecker::learn(const ValidityChecker& exact, std::vecto
   stats.labelled = n;
   t0 = Clock::now();
   for (int i = 0; i < n; ++i) features(qs[i], &feats[static_cast<size_t>(i) * dim_]);
-  stats.train = model_.train(feats, labels, alpha);
+  stats.train = model_.train(feats, labels, alpha, stop);
   support_q_.clear();
   support_alpha_.clear();
   support_label_.clear();
@@ -143,7 +143,8 @@ FastronLearnStats FastronChecker::learn(const ValidityChecker& exact, std::vecto
 }
 
 FastronLearnStats FastronChecker::train(const ValidityChecker& exact, std::uint64_t seed,
-                                        const std::vector<Eigen::VectorXd>& extra) {
+                                        const std::vector<Eigen::VectorXd>& extra,
+                                        const std::function<bool()>& stop) {
   Rng rng(seed);
   std::vector<Eigen::VectorXd> qs;
   const Eigen::VectorXd lo = robot_->lowerLimits(), hi = robot_->upperLimits();
@@ -153,7 +154,8 @@ FastronLearnStats FastronChecker::train(const ValidityChecker& exact, std::uint6
     qs.push_back(std::move(q));
   }
   for (const auto& q : extra) robot_->checkConfiguration(q, "Fastron training point"), qs.push_back(q);
-  return learn(exact, std::move(qs), std::vector<double>(qs.size(), 0.0));
+  std::vector<double> alpha(qs.size(), 0.0);
+  return learn(exact, std::move(qs), std::move(alpha), stop);
 }
 
 FastronLearnStats FastronChecker::update(const ValidityChecker& exact, std::uint64_t seed,
@@ -185,7 +187,7 @@ FastronLearnStats FastronChecker::update(const ValidityChecker& exact, std::uint
   }
   for (const auto& q : extra) robot_->checkConfiguration(q, "Fastron training point"), qs.push_back(q);
   alpha.resize(qs.size(), 0.0);
-  return learn(exact, std::move(qs), std::move(alpha));
+  return learn(exact, std::move(qs), std::move(alpha), {});
 }
 
 }  // namespace svmp::cspace

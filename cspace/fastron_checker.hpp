@@ -19,6 +19,7 @@
 // Thread safety: const methods may run concurrently (thread-local feature buffers); train() and
 // update() may not run beside anything else.
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,8 +64,10 @@ class FastronChecker final : public ValidityChecker {
   FastronChecker(std::shared_ptr<const robots::Robot> robot, FastronCheckerOptions options);
 
   // Cold start on options.initial_samples uniform configurations plus `extra`, labelled by `exact`.
+  // `stop`, when set, is polled at every update of the model (then train.stopped).
   FastronLearnStats train(const ValidityChecker& exact, std::uint64_t seed,
-                          const std::vector<Eigen::VectorXd>& extra = {});
+                          const std::vector<Eigen::VectorXd>& extra = {},
+                          const std::function<bool()>& stop = {});
   // Active learning and a warm update after the workspace changed (`exact` sees the new one).
   FastronLearnStats update(const ValidityChecker& exact, std::uint64_t seed,
                            const std::vector<Eigen::VectorXd>& extra = {});
@@ -95,7 +98,7 @@ class FastronChecker final : public ValidityChecker {
 
  private:
   FastronLearnStats learn(const ValidityChecker& exact, std::vector<Eigen::VectorXd> qs,
-                          std::vector<double> alpha);
+                          std::vector<double> alpha, const std::function<bool()>& stop);
 
   std::shared_ptr<const robots::Robot> robot_;
   FastronCheckerOptions options_;

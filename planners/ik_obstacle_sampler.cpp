@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
@@ -33,6 +36,25 @@ void boxSurface(const Eigen::Vector3d& sides, double res, std::vector<Eigen::Vec
           out.push_back(p);
         }
   }
+}
+
+// At least as many points as surfacePoints gives: a convex outline is no longer than the circle
+// round its bounding box, and a convex surface has no more area than that box's sphere.
+double surfacePointBound(const robots::Shape& shape, double res, bool planar) {
+  const double radius = 0.5 * shape.bounds().sizes().norm();
+  const double around = 2 * kPi * radius / res + 4;
+  return planar ? around : 6 * around * around;
+}
+
+// IK targets per obstacle point and draw: one per link point (and the CRS-F3's two upper-arm turns).
+double linkPointCount(const robots::PlanarArm* planar, const robots::DhArm* dh, double res) {
+  if (planar) {
+    double n = 1;
+    for (int link = 1; link < planar->dof(); ++link) n += steps(planar->lengths()[link], res);
+    return n;
+  }
+  const auto& spec = dh->spec();
+  return 2 + steps(std::abs(spec.rows.size() > 3 ? spec.rows[3].d : spec.flange.d), res);
 }
 
 }  // namespace
@@ -124,7 +146,8 @@ void boundarySamples(const cspace::ConfigurationSpace& space, double res, cspace
 
 IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
                               const cspace::ConfigurationSpace& space,
-                              const IkSamplingOptions& options, std::uint64_t seed) {
+                              const IkSamplingOptions& options, std::uint64_t seed,
+                              const std::function<bool()>& stop) {
   const std::string err = options.validate();
   if (!err.empty()) throw std::invalid_argument("IK obstacle sampling: " + err);
   const robots::Robot& robot = checker.robot();
@@ -134,16 +157,48 @@ IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
   if (!planar && !(dh && dh->hasElbowStructure()))
     throw std::invalid_argument("IK obstacle sampling needs a planar arm or the CRS-F3 (robot '" +
                                 robot.name() + "' has no closed-form IK here)");
+  double link_res = options.link_resolution, obstacle_res = options.obstacle_resolution;
+  const auto pairsAt = [&](double link, double obstacle) {
+    double pairs = 0;
+    for (const auto& o : checker.environment().obstacles()) pairs += surfacePointBound(o.shape, obstacle, planar);
+    return pairs * options.free_joint_draws * linkPointCount(planar, dh, link);
+  };
+  for (int coarser = 0; coarser < 64 && pairsAt(link_res, obstacle_res) > IkSamplingOptions::kMaxPairs; ++coarser)
+    link_res *= 1.5, obstacle_res *= 1.5;
+  if (const double pairs = pairsAt(link_res, obstacle_res); pairs > IkSamplingOptions::kMaxPairs)
+    throw std::invalid_argument("IK obstacle sampling: " + std::to_string(static_cast<long>(pairs)) +
+                                " link-obstacle pairs at any resolution (obstacles x free_joint_draws), more than " +
+                                std::to_string(static_cast<long>(IkSamplingOptions::kMaxPairs)));
   cspace::Rng rng(seed);
-  std::vector<Eigen::VectorXd> configs;
-  std::vector<int> regions;
+  // Algorithm R (Vitter 1985): a uniform subset of max_samples of all configurations found, in
+  // memory that does not grow with how many there are; kept in the order they were found.
+  struct Kept {
+    long order;
+    int region;
+    Eigen::VectorXd q;
+  };
+  std::vector<Kept> kept;
+  long found = 0;
+  auto take = [&](const Eigen::VectorXd& q, int region) {
+    if (found < options.max_samples) {
+      kept.push_back({found, region, q});
+    } else if (const long j = std::uniform_int_distribution<long>(0, found)(rng); j < options.max_samples) {
+      kept[j] = {found, region, q};
+    }
+    ++found;
+  };
   auto keep = [&](const std::vector<Eigen::VectorXd>& solutions, int region) {
     for (const auto& q : solutions)
-      if (robot.withinLimits(q)) configs.push_back(q), regions.push_back(region);
+      if (robot.withinLimits(q)) take(q, region);
   };
   Eigen::VectorXd free_joints(robot.dof());
   for (const auto& obstacle : checker.environment().obstacles()) {
-    for (const Eigen::Vector3d& o : surfacePoints(obstacle.shape, options.obstacle_resolution, planar)) {
+    for (const Eigen::Vector3d& o : surfacePoints(obstacle.shape, obstacle_res, planar)) {
+      if (stop && stop()) {
+        IkSamples none;
+        none.stopped = true;
+        return none;
+      }
       for (int draw = 0; draw < options.free_joint_draws; ++draw) {
         space.sampleUniform(rng, free_joints);
         if (planar) {
@@ -153,7 +208,7 @@ IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
             keep(planar->solvePointOnLink(0, s0, target, free_joints), obstacle.id);
           for (int link = 1; link < robot.dof(); ++link) {
             const double length = planar->lengths()[link];
-            const int n = steps(length, options.link_resolution);
+            const int n = steps(length, link_res);
             for (int i = 1; i <= n; ++i)
               keep(planar->solvePointOnLink(link, length * i / n, target, free_joints), obstacle.id);
           }
@@ -172,7 +227,7 @@ IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
           const double s = (o - dh->pointOnLinkFirstThree(q, 1, spec.rows[1].a)).norm();
           if (s > 0 && s <= upper_arm) keep(dh->solvePointOnLinkFirstThree(2, s, o, free_joints), obstacle.id);
         }
-        const int n = steps(forearm, options.link_resolution);
+        const int n = steps(forearm, link_res);
         for (int i = 1; i <= n; ++i)
           keep(dh->solvePointOnLinkFirstThree(3, forearm * i / n, o, free_joints), obstacle.id);
       }
@@ -181,21 +236,14 @@ IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
   // The joint limits bound the free space too (ch. 2.2.1); they get at most a third of the budget.
   std::vector<Eigen::VectorXd> boundary;
   boundarySamples(space, options.boundary_resolution, rng, options.max_samples / 3, boundary);
-  for (auto& q : boundary) configs.push_back(std::move(q)), regions.push_back(kBoundaryRegion);
+  for (const auto& q : boundary) take(q, kBoundaryRegion);
 
-  // Uniform thinning to the budget, keeping the original order (deterministic for the seed).
-  std::vector<int> order(configs.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  if (static_cast<int>(order.size()) > options.max_samples) {
-    std::shuffle(order.begin(), order.end(), rng);
-    order.resize(options.max_samples);
-    std::sort(order.begin(), order.end());
-  }
+  std::sort(kept.begin(), kept.end(), [](const Kept& a, const Kept& b) { return a.order < b.order; });
   IkSamples samples;
-  samples.points.resize(robot.dof(), static_cast<Eigen::Index>(order.size()));
-  for (size_t i = 0; i < order.size(); ++i) {
-    samples.points.col(i) = configs[order[i]];
-    samples.regions.push_back(regions[order[i]]);
+  samples.points.resize(robot.dof(), static_cast<Eigen::Index>(kept.size()));
+  for (size_t i = 0; i < kept.size(); ++i) {
+    samples.points.col(static_cast<Eigen::Index>(i)) = kept[i].q;
+    samples.regions.push_back(kept[i].region);
   }
   return samples;
 }

@@ -7,6 +7,7 @@
 // joints). Surface points of a planar robot's obstacles lie on their cross-section with z = 0.
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,12 @@ struct IkSamplingOptions {
   double boundary_resolution = 0.2;   // spacing of joint-limit samples (rad)
   int free_joint_draws = 1;           // random draws of the free joints per pair
   int max_samples = 4000;             // uniform thinning beyond this (keeps SVM training bounded)
+  // Where the resolutions would give more <link point, obstacle point> pairs than this (a bound
+  // over the obstacles' bounding spheres; an arm and obstacles hundreds of times larger than the
+  // resolutions), both are coarsened by one factor until they do not: about the samples of the
+  // robot at the scale the resolutions were meant for, instead of IK solves that grow with the
+  // scale squared or cubed. Every file in bench/ stays below it (at most 3.2 million).
+  static constexpr double kMaxPairs = 5e6;
   std::string validate() const;
   bool operator==(const IkSamplingOptions&) const = default;
 };
@@ -31,13 +38,16 @@ struct IkSamplingOptions {
 struct IkSamples {
   Eigen::MatrixXd points;    // dof x n
   std::vector<int> regions;  // obstacle id, or kBoundaryRegion for joint-limit samples
+  bool stopped = false;      // `stop` fired: no samples
   int size() const { return static_cast<int>(regions.size()); }
 };
 
 // Throws std::invalid_argument when the robot has no closed-form IK here (point robots, the Panda).
+// `stop`, when set, is polled at every obstacle point.
 IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
                               const cspace::ConfigurationSpace& space,
-                              const IkSamplingOptions& options, std::uint64_t seed);
+                              const IkSamplingOptions& options, std::uint64_t seed,
+                              const std::function<bool()>& stop = {});
 
 // Points on the surface of a shape (world frame) at about `resolution` spacing; for planar robots
 // (`planar`), on the outline of its cross-section with the plane z = 0.

@@ -26,8 +26,9 @@ LocalPlannerOptions LocalPlannerOptions::fromParameters(const cspace::ParameterS
   o.sampling.obstacle_resolution = params.getDouble("obstacle_resolution", o.sampling.obstacle_resolution, 1e-6, 1e6);
   o.sampling.boundary_resolution = params.getDouble("boundary_resolution", o.sampling.boundary_resolution, 1e-6, 1e6);
   o.sampling.max_samples = static_cast<int>(params.getInt("max_samples", o.sampling.max_samples, 2, 100000));
-  o.max_iterations = static_cast<int>(params.getInt("max_iterations", o.max_iterations, 1, 100000000));
-  o.stall_iterations = static_cast<int>(params.getInt("stall_iterations", o.stall_iterations, 1, 100000000));
+  // Every step is a waypoint of the path: at most a million (tens of MB).
+  o.max_iterations = static_cast<int>(params.getInt("max_iterations", o.max_iterations, 1, 1000000));
+  o.stall_iterations = static_cast<int>(params.getInt("stall_iterations", o.stall_iterations, 1, 1000000));
   return o;
 }
 
@@ -155,9 +156,19 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, const Termination& 
 
 void LocalPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
                           PlanResult& result) {
+  if ((query.goal - query.start).norm() < 1e-12) {  // no hyperplane is needed to stay put
+    result.status = PlanStatus::kSolved;
+    result.path = {query.start, query.goal};
+    return;
+  }
   auto t0 = Clock::now();
-  try {  // a robot without closed-form IK, or start == goal: this query cannot be posed to the planner
-    samples_ = sampleObstaclesByIk(context_.checker, context_.space, options_.sampling, seed);
+  try {  // a robot without closed-form IK: this query cannot be posed to the planner
+    samples_ = sampleObstaclesByIk(context_.checker, context_.space, options_.sampling, seed, stop.asFunction());
+    if (samples_.stopped) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached while sampling the obstacles";
+      return;
+    }
     labelling_ = labelByHyperplane(samples_.points, samples_.regions, kBoundaryRegion, query.start, query.goal,
                                    options_.labelling, seed);
   } catch (const std::invalid_argument& e) {

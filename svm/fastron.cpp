@@ -46,7 +46,8 @@ FastronModel::FastronModel(int dim, int block, FastronOptions options)
 }
 
 FastronTrainStats FastronModel::train(const std::vector<float>& features,
-                                      const std::vector<std::int8_t>& labels, std::vector<double>& alpha) {
+                                      const std::vector<std::int8_t>& labels, std::vector<double>& alpha,
+                                      const std::function<bool()>& stop) {
   const int n = static_cast<int>(labels.size());
   if (features.size() != static_cast<size_t>(n) * dim_ || alpha.size() != labels.size())
     throw std::invalid_argument("FastronModel::train: features, labels and weights differ in size");
@@ -95,6 +96,10 @@ FastronTrainStats FastronModel::train(const std::vector<float>& features,
   };
 
   while (stats.steps < options_.max_updates && n > 0) {
+    if (stop && stop()) {
+      stats.stopped = true;
+      break;
+    }
     int worst = 0;
     for (int j = 1; j < n; ++j)
       if (labels[j] * F[j] < labels[worst] * F[worst]) worst = j;

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,7 @@ struct FastronTrainStats {
   int support = 0;         // support points after training
   long long kernel_columns = 0;  // columns computed (cache misses)
   bool converged = false;  // every training point has a positive margin
+  bool stopped = false;    // the caller's stop fired before the updates ended
   double min_margin = 0;   // y_i f(x_i) over the training set
 };
 
@@ -58,8 +60,9 @@ class FastronModel {
   // its support points in a warm one). On return alpha holds the weights (the support set is its
   // nonzero entries), and the model answers queries with that support set. Throws
   // std::invalid_argument on mismatched sizes, a label other than +-1 or a non-finite value.
+  // `stop`, when set, is polled before every update.
   FastronTrainStats train(const std::vector<float>& features, const std::vector<std::int8_t>& labels,
-                          std::vector<double>& alpha);
+                          std::vector<double>& alpha, const std::function<bool()>& stop = {});
 
   // f(x) for one feature vector of dim floats.
   double value(const float* x) const;

@@ -82,7 +82,14 @@ struct Proxy {
     checker = std::make_unique<cspace::FastronChecker>(scenario.robot, o);
     std::vector<Eigen::VectorXd> ends;
     for (const auto& q : scenario.queries) ends.push_back(q.start), ends.push_back(q.goal);
-    const auto s = checker->train(exact.checker, options.seed, ends);
+    // Learning comes before the runs; a --time-limit bounds it as it bounds each run.
+    const planners::Termination stop =
+        options.time_limit > 0 ? planners::Termination::after(options.time_limit) : planners::Termination();
+    const auto s = checker->train(exact.checker, options.seed, ends, stop.asFunction());
+    if (s.train.stopped)
+      throw std::runtime_error("flag --time-limit " + std::to_string(options.time_limit) + ": the " + options.checker +
+                               " proxy had not learned its " + std::to_string(s.labelled) +
+                               " configurations after " + std::to_string(s.train.steps) + " updates");
     log << "svmp-plan: " << options.checker << ": " << s.labelled << " configurations labelled in " << s.label_ms
         << " ms, learned in " << s.learn_ms << " ms: " << s.train.support << " support points"
         << (s.train.converged ? "" : " (not converged)") << "\n";

@@ -34,11 +34,12 @@ using test::readScenario;
 
 // Each IK sample of an obstacle puts the robot on that obstacle: the checker reports it hit (virtual
 // obstacles included) or the robot is within the contact tolerance of the real obstacles.
-void expectSamplesTouchTheirObstacle(const std::string& scenario, double tolerance) {
+void expectSamplesTouchTheirObstacle(const std::string& scenario, double tolerance,
+                                     const IkSamplingOptions& options = {}) {
   auto w = makeWorld(readScenario(scenario));
-  IkSamplingOptions options;
   const IkSamples s = sampleObstaclesByIk(w->checker, w->space, options, 3);
   ASSERT_GT(s.size(), 0);
+  EXPECT_LE(s.size(), options.max_samples);
   std::set<int> seen;
   int obstacle_samples = 0, misses = 0;
   for (int i = 0; i < s.size(); ++i) {
@@ -62,6 +63,31 @@ TEST(IkObstacleSampler, PlanarArmSamplesTouchTheirObstacle) {
 
 TEST(IkObstacleSampler, CrsF3SamplesTouchTheirObstacle) {
   expectSamplesTouchTheirObstacle("thesis_fig2_10.yaml", 1e-6);
+}
+
+// Resolutions of 1e-6 m would pair 1e12 link and obstacle points (5.4 GB before the thinning, then
+// an abort). They are coarsened to a bounded count, and the kept samples are a subset of them.
+TEST(IkObstacleSampler, FineResolutionsStayWithinTheBudget) {
+  expectSamplesTouchTheirObstacle("thesis_fig2_6.yaml", 1e-6,
+                                  {.link_resolution = 1e-6, .obstacle_resolution = 1e-6, .max_samples = 500});
+}
+
+TEST(IkObstacleSampler, StopEndsTheSamplingAndTheQueryTimesOut) {
+  auto w = makeWorld(readScenario("thesis_fig2_10.yaml"));
+  const IkSamples s = sampleObstaclesByIk(w->checker, w->space, {}, 1, [] { return true; });
+  EXPECT_TRUE(s.stopped);
+  EXPECT_EQ(s.size(), 0);
+  const PlanResult r = w->planner("local")->solve(w->query(), 1, Termination::when([] { return true; }));
+  EXPECT_EQ(r.status, PlanStatus::kTimeout) << r.message;
+}
+
+TEST(LocalPlanner, StartAtTheGoalIsTheTrivialPath) {
+  auto w = makeWorld(readScenario("thesis_fig2_6.yaml"));
+  const cspace::Query stay{w->query().start, w->query().start, {}};
+  const PlanResult r = w->planner("local")->solve(stay, 1);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_EQ(r.path.size(), 2u);
+  EXPECT_EQ(r.path.front(), r.path.back());
 }
 
 // A robot without closed-form IK here (the Panda, a DH arm without the CRS-F3's elbow) is the

@@ -55,6 +55,21 @@ double bruteForce(const Data& d, const std::vector<double>& alpha, int dim, int 
 
 class FastronKernels : public ::testing::TestWithParam<std::pair<int, int>> {};
 
+// The caller's stop ends the updates where they are: after exactly as many as it allowed.
+TEST(Fastron, StopEndsTheUpdates) {
+  const Data d = ballData(1500, 3, 3);
+  FastronOptions o;
+  o.gamma = 5;
+  FastronModel model(3, 3, o);
+  std::vector<double> alpha(d.y.size(), 0.0);
+  int polls = 0;
+  const FastronTrainStats s = model.train(d.x, d.y, alpha, [&] { return ++polls > 7; });
+  EXPECT_TRUE(s.stopped);
+  EXPECT_FALSE(s.converged);
+  EXPECT_EQ(s.steps, 7);
+  EXPECT_EQ(s.support, model.size());
+}
+
 TEST_P(FastronKernels, ConvergesAndEvaluatesAsTheBruteForceSum) {
   const auto [dim, block] = GetParam();
   const Data d = ballData(1500, dim, 3);
