@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
   try {
     experiments::checkWritable("--log", flags.log);
     cspace::Scenario scenario = cspace::loadScenario(flags.scenario);
-    experiments::requireFreeEndpoints(scenario);
+    experiments::requireValidConfigurations(scenario);
     if (flags.query >= static_cast<int>(scenario.queries.size()))
       throw std::invalid_argument("flag --query: " + std::to_string(flags.query) + ": the scenario has " +
                                   std::to_string(scenario.queries.size()) + " queries");

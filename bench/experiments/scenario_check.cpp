@@ -83,7 +83,7 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
   return ok;
 }
 
-void requireFreeEndpoints(const cspace::Scenario& scenario) {
+void requireValidConfigurations(const cspace::Scenario& scenario) {
   const cspace::CollisionChecker checker(scenario.robot, scenario.environment, scenario.self_collision);
   for (size_t i = 0; i < scenario.queries.size(); ++i) {
     const auto& q = scenario.queries[i];
@@ -96,6 +96,12 @@ void requireFreeEndpoints(const cspace::Scenario& scenario) {
                                   " is " + cspace::describeHit(*scenario.environment, hit));
     }
   }
+  const auto& obstacles = scenario.environment->obstacles();
+  for (size_t i = 0; i < obstacles.size(); ++i)
+    if (obstacles[i].root_sample && !checker.hits(*obstacles[i].root_sample, obstacles[i].id))
+      throw cspace::ScenarioError(scenario.path + ": field 'obstacles[" + std::to_string(i) + "].sample': configuration " +
+                                  format(*obstacles[i].root_sample) + " does not hit obstacle '" +
+                                  obstacles[i].name + "'");
 }
 
 }  // namespace svmp::experiments

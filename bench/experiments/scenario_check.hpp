@@ -10,9 +10,10 @@ namespace svmp::experiments {
 // Prints the summary; returns false when a start, goal or witness segment is in collision.
 bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out);
 
-// Throws cspace::ScenarioError naming the file, the field (start, goal or queries[i].start/goal),
-// the configuration and what it hits when a query's start or goal is in collision: no planner can
-// answer such a query, so the drivers refuse it before running.
-void requireFreeEndpoints(const cspace::Scenario& scenario);
+// Throws cspace::ScenarioError naming the file, the field (start, goal, queries[i].start/goal or
+// obstacles[i].sample), the configuration and what it hits when a query's start or goal is in
+// collision (no planner can answer it) or an obstacle's `sample` misses that obstacle (it roots the
+// obstacle's sampling tree); the drivers refuse both before running.
+void requireValidConfigurations(const cspace::Scenario& scenario);
 
 }  // namespace svmp::experiments

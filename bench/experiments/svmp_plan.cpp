@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
       experiments::validatePlanners(scenario, options);
       return experiments::printScenarioCheck(scenario, std::cout) ? 0 : 1;
     }
-    experiments::requireFreeEndpoints(scenario);
+    experiments::requireValidConfigurations(scenario);
     for (const auto& [flag, dir] : {std::pair{"--svg", options.svg_dir}, std::pair{"--path-dir", options.paths_dir}}) {
       std::error_code error;
       if (!dir.empty() && !std::filesystem::create_directories(dir, error) && error) {

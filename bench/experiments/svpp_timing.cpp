@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
   try {
     for (const std::string& file : files) {
       const cspace::Scenario s = cspace::loadScenario(file);
-      experiments::requireFreeEndpoints(s);
+      experiments::requireValidConfigurations(s);
       const cspace::ConfigurationSpace space = s.makeSpace();
       const cspace::CollisionChecker checker(s.robot, s.environment, s.self_collision);
       const cspace::DiscreteMotionValidator validator(checker, space, s.resolution);
