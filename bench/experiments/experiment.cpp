@@ -87,9 +87,10 @@ struct Proxy {
         options.time_limit > 0 ? planners::Termination::after(options.time_limit) : planners::Termination();
     const auto s = checker->train(exact.checker, options.seed, ends, stop.asFunction());
     if (s.train.stopped)
-      throw std::runtime_error("flag --time-limit " + std::to_string(options.time_limit) + ": the " + options.checker +
-                               " proxy had not learned its " + std::to_string(s.labelled) +
-                               " configurations after " + std::to_string(s.train.steps) + " updates");
+      throw std::runtime_error((std::ostringstream() << "flag --time-limit " << options.time_limit << ": the "
+                                                     << options.checker << " proxy had not learned its " << s.labelled
+                                                     << " configurations after " << s.train.steps << " updates")
+                                   .str());
     log << "svmp-plan: " << options.checker << ": " << s.labelled << " configurations labelled in " << s.label_ms
         << " ms, learned in " << s.learn_ms << " ms: " << s.train.support << " support points"
         << (s.train.converged ? "" : " (not converged)") << "\n";

@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "bench/experiments/output_text.hpp"
 
@@ -66,8 +67,8 @@ void evaluate(const cspace::FastronChecker& proxy, const TestSet& t, MethodSampl
     tn += !hit && !t.colliding[i];
   }
   m.accuracy.push_back(double(tp + tn) / n);
-  m.tpr.push_back(pos ? double(tp) / pos : 1.0);
-  m.tnr.push_back(n - pos ? double(tn) / (n - pos) : 1.0);
+  if (pos > 0) m.tpr.push_back(double(tp) / pos);  // undefined without positives: left out
+  if (n - pos > 0) m.tnr.push_back(double(tn) / (n - pos));
   m.support.push_back(proxy.model().size());
   std::vector<int> out;
   t0 = Clock::now();
@@ -162,6 +163,11 @@ CollisionResults runCollisionExperiment(const cspace::Scenario& scenario, const 
         << statsOf(r.rbf.converged).mean << "; steps fk " << statsOf(r.fk.steps).mean << ", rbf " << statsOf(r.rbf.steps).mean << "\n";
   }
   r.collision_fraction = statsOf(fractions).mean;
+  if (r.fk.tpr.empty() || r.fk.tnr.empty())
+    throw std::runtime_error(std::string("no test set had a configuration ") +
+                             (r.fk.tpr.empty() ? "in collision" : "free") +
+                             ": the moving box (a ring 0.35-0.75 m round the base, for an arm of the Panda's size) "
+                             "never met this scenario's robot, so TPR and TNR are undefined");
 
   for (int count : options.obstacle_counts) {
     ObstacleCountRow row;

@@ -115,7 +115,8 @@ int main(int argc, char** argv) {
     const auto rbf = cspace::FastronCheckerOptions::fromParameters("fastron-rbf", flags.params["fastron-rbf"]);
     for (auto& [name, p] : flags.params) p.requireAllUsed();
     if (!flags.json.empty()) experiments::checkWritable("--json", flags.json);
-    if (!flags.svg.empty()) std::filesystem::create_directories(flags.svg);
+    if (std::error_code error; !flags.svg.empty() && !std::filesystem::create_directories(flags.svg, error) && error)
+      throw std::runtime_error("flag --svg: cannot create directory '" + flags.svg + "': " + error.message());
     const bool all = flags.experiment == "all";
     std::ostringstream json;
     json << "{\"scenario\": \"" << scenario.name << "\", \"seed\": " << flags.seed;
