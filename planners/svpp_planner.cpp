@@ -53,18 +53,28 @@ std::string SvppOptions::validate() const {
   return why.str();
 }
 
+namespace {
+
+// Guides every d_p on both sides of a line at most the diagonal long, and in 3-D across a plane's
+// width.
+double guideSampleBound(const cspace::ConfigurationSpace& space, double spacing, double distance) {
+  const double diagonal = (space.upper() - space.lower()).norm();
+  const double across = space.dim() == 3 ? (diagonal + 2 * distance) / spacing + 2 : 1;
+  return 2 * (diagonal / spacing + 2) * across;
+}
+
+}  // namespace
+
 std::string SvppOptions::validateFor(const cspace::ConfigurationSpace& space) const {
   if (std::string why = validate(); !why.empty()) return why;
   const double diagonal = (space.upper() - space.lower()).norm();
-  // Guides every d_p along a line at most the diagonal long, and in 3-D across a plane's width.
-  const double along = diagonal / guide_spacing + 2;
-  const double across = space.dim() == 3 ? (diagonal + 2 * guide_distance) / guide_spacing + 2 : 1;
+  const double guides = guideSampleBound(space, guide_spacing, guide_distance);
   std::ostringstream why;
   if (diagonal / step > kMaxStepsPerDiagonal)
     why << "step (" << step << ") is below 1/" << kMaxStepsPerDiagonal << " of the space's diagonal ("
         << diagonal << ")";
-  else if (2 * along * across > kMaxGuideSamples)
-    why << "guide_spacing (" << guide_spacing << ") gives up to " << 2 * along * across
+  else if (guides > kMaxGuideSamples)
+    why << "guide_spacing (" << guide_spacing << ") gives up to " << guides
         << " guide samples in this space, more than " << kMaxGuideSamples;
   return why.str();
 }
@@ -82,6 +92,10 @@ SvppOptions SvppOptions::resolvedFor(const cspace::ConfigurationSpace& space, in
                               {&o.step, kPaperStep}})
     if (*value == kDerived) *value = paper * s;
   if (o.gamma == kDerived) o.gamma = kPaperGamma / (s * s);
+  // A dense 3-D field (over about 2,000 obstacles in a cube) spaces its guides wider rather than be
+  // refused.
+  if (guide_spacing == kDerived)
+    while (guideSampleBound(space, o.guide_spacing, o.guide_distance) > kMaxGuideSamples) o.guide_spacing *= 1.1;
   return o;
 }
 

@@ -284,6 +284,8 @@ TEST(SvppTest, UnsetLengthsScaleWithTheSpaceSoAScaledProblemGetsTheScaledPath) {
   EXPECT_DOUBLE_EQ(SvppOptions{}.resolvedFor(space, 80).step, SvppOptions::kPaperStep / 2);
   EXPECT_DOUBLE_EQ(SvppOptions{}.resolvedFor(space, 80).gamma, 4 * SvppOptions::kPaperGamma);
   EXPECT_EQ(SvppOptions{.step = 0.3}.resolvedFor(space, 80).step, 0.3);  // given, kept
+  // So many obstacles that the scaled spacing would exceed the guide samples' bound: wider, valid.
+  EXPECT_EQ(SvppOptions{}.resolvedFor(space, 100000000).validateFor(space), "");
 
   auto planner = paper.planner();
   const PlanResult reference = planner->solve(paper.world->query(), 3);
