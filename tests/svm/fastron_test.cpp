@@ -55,21 +55,6 @@ double bruteForce(const Data& d, const std::vector<double>& alpha, int dim, int 
 
 class FastronKernels : public ::testing::TestWithParam<std::pair<int, int>> {};
 
-// The caller's stop ends the updates where they are: after exactly as many as it allowed.
-TEST(Fastron, StopEndsTheUpdates) {
-  const Data d = ballData(1500, 3, 3);
-  FastronOptions o;
-  o.gamma = 5;
-  FastronModel model(3, 3, o);
-  std::vector<double> alpha(d.y.size(), 0.0);
-  int polls = 0;
-  const FastronTrainStats s = model.train(d.x, d.y, alpha, [&] { return ++polls > 7; });
-  EXPECT_TRUE(s.stopped);
-  EXPECT_FALSE(s.converged);
-  EXPECT_EQ(s.steps, 7);
-  EXPECT_EQ(s.support, model.size());
-}
-
 TEST_P(FastronKernels, ConvergesAndEvaluatesAsTheBruteForceSum) {
   const auto [dim, block] = GetParam();
   const Data d = ballData(1500, dim, 3);
@@ -135,7 +120,7 @@ TEST(Fastron, WarmStartAfterTheObstacleMovedLearnsTheNewLabels) {
   for (size_t i = 0; i < after.y.size(); ++i) EXPECT_GT(after.y[i] * warm.value(&after.x[i * 3]), 0) << i;
 }
 
-TEST(Fastron, LimitsBoundStepsAndSupport) {
+TEST(Fastron, LimitsAndAStopBoundStepsAndSupport) {
   const Data d = ballData(1000, 3, 7);
   FastronOptions o;
   o.max_support = 10;
@@ -149,6 +134,15 @@ TEST(Fastron, LimitsBoundStepsAndSupport) {
   const FastronTrainStats s = brief.train(d.x, d.y, alpha);
   EXPECT_LE(s.steps, 5);
   EXPECT_FALSE(s.converged);
+  // The caller's stop ends the updates where they are: after exactly as many as it allowed.
+  FastronModel stopped(3, 3, FastronOptions{});
+  std::fill(alpha.begin(), alpha.end(), 0.0);
+  int polls = 0;
+  const FastronTrainStats t = stopped.train(d.x, d.y, alpha, [&] { return ++polls > 7; });
+  EXPECT_TRUE(t.stopped);
+  EXPECT_FALSE(t.converged);
+  EXPECT_EQ(t.steps, 7);
+  EXPECT_EQ(t.support, stopped.size());
 }
 
 TEST(Fastron, BadInputIsRefused) {
