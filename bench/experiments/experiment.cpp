@@ -193,6 +193,11 @@ std::vector<cspace::Query> randomQueries(const cspace::Scenario& scenario, int c
   return queries;
 }
 
+// Several queries, or --queries (even one): one build per run answers them all.
+bool sharedBuild(const cspace::Scenario& scenario, const DriverOptions& options) {
+  return scenario.queries.size() > 1 || options.queries > 0;
+}
+
 void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options) {
   std::ostringstream quiet;
   const World world(scenario, options, quiet);
@@ -208,6 +213,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
   std::vector<PlannerRuns> results;
   for (size_t p = 0; p < planners.size(); ++p) results.push_back({options.planners[p], {}, parameters[p]});
   const auto& queries = scenario.queries;
+  const bool shared_build = sharedBuild(scenario, options);
   svm::SolverWorkspace smoothing;  // --simplify svpp: each path's SVM reuses the last one's cache memory
   // Seed by seed, every planner in turn: a change of load while the run lasts slows each planner
   // alike, so their ratios stay fair (one planner's runs all after another's would not).
@@ -221,11 +227,12 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
       const auto limit = [&] {
         return options.time_limit > 0 ? planners::Termination::after(options.time_limit) : planners::Termination();
       };
-      // One query: solve() (clear, build, answer). Several: one build per run answers them all; the
-      // first query's record carries the build, later ones what one more query costs.
+      // One query: solve() (clear, build, answer). Several, or --queries: one build per run answers
+      // them all; the first query's record carries the build, later ones what one more query costs.
+      // A build that fails fails every query, the first record carrying its time and counters.
       planners::PlanResult build;
       double build_ms = 0;
-      if (queries.size() > 1) {
+      if (shared_build) {
         const auto t0 = Clock::now();
         build = planner.build(seed, limit());
         build_ms = planners::msSince(t0);
@@ -237,15 +244,20 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         const double resident_mb = residentMegabytes();
         const planners::Termination stop = limit();
         const auto t0 = Clock::now();
-        if (queries.size() == 1) record.result = planner.solve(queries[i], seed, stop);
-        else if (!planner.built()) record.result = build;
-        else record.result = planner.query(queries[i], seed, stop);
+        if (!shared_build) {
+          record.result = planner.solve(queries[i], seed, stop);
+        } else if (!planner.built()) {
+          if (i == 0) record.result = build;
+          record.result.status = build.status, record.result.message = build.message;
+        } else {
+          record.result = planner.query(queries[i], seed, stop);
+        }
         record.time_ms = planners::msSince(t0) - record.result.counting_ms;
         record.memory_mb = std::max(0.0, residentMegabytes() - resident_mb);
-        if (i == 0 && queries.size() > 1 && planner.built()) {
+        if (i == 0 && shared_build) {
           record.time_ms += build_ms;
           record.build_ms = build_ms;
-          planners::addBuild(build, record.result);
+          if (planner.built()) planners::addBuild(build, record.result);
         }
         record.raw_length = planners::pathLength(record.result.path, world.space);
         if (options.simplify && record.result.solved()) {
@@ -265,14 +277,17 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         }
         measurePath(scenario, world.space, world.measuring, record);
         if (r == 0 && i == 0 && !options.svg_dir.empty()) writePictures(options.svg_dir, scenario, planner, record, log);
-        log << "  " << runs.planner << " seed " << seed << (queries.size() > 1 ? " query " + std::to_string(i) : "")
+        if (shared_build && !planner.built() && i > 0) {  // the build's failure, logged once
+          runs.runs.push_back(std::move(record));
+          continue;
+        }
+        log << "  " << runs.planner << " seed " << seed << (shared_build ? " query " + std::to_string(i) : "")
             << ": " << planners::planStatusName(record.result.status) << ", " << record.result.collision_checks
             << " checks, " << std::fixed << std::setprecision(1) << record.time_ms << " ms"
             << (record.result.message.empty() ? "" : " (" + record.result.message + ")") << "\n";
         if (r == 0 && i == 0)  // the same scenario gives every run the same warnings
           for (const std::string& w : record.result.warnings) log << "  " << runs.planner << " warning: " << w << "\n";
         runs.runs.push_back(std::move(record));
-        if (queries.size() > 1 && !planner.built()) break;  // the build failed: no query can be answered
       }
     }
   }
@@ -282,7 +297,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
 void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
                 const std::vector<PlannerRuns>& results, std::ostream& out) {
   out << "\n" << scenario.name << " (dof " << scenario.robot->dof() << "), " << options.runs << " runs"
-      << (scenario.queries.size() > 1 ? " x " + std::to_string(scenario.queries.size()) + " queries" : "")
+      << (sharedBuild(scenario, options) ? " x " + std::to_string(scenario.queries.size()) + " queries" : "")
       << ", seeds " << options.seed << ".." << options.seed + options.runs - 1 << ", " << options.threads
       << " thread(s)" << (!options.simplify ? "" : options.simplify_svm ? ", paths SVM-smoothed" : ", paths simplified")
       << "\n";
@@ -299,7 +314,7 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
   for (const auto& runs : results) {
     std::ostringstream solved;
     solved << runs.solved() << "/" << runs.runs.size();
-    out << std::left << std::setw(17) << runs.planner << std::setw(9) << solved.str()
+    out << pad(runs.planner, 17) << pad(solved.str(), 9)
         << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.collision_checks); }), 0), w)
         << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.local_planner_calls); }), 0), w)
         << pad(meanStd(collect(runs, false, [](const RunRecord& r) { return double(r.result.distance_queries); }), 0), w)
@@ -309,7 +324,7 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
         << (options.simplify ? pad(meanStd(collect(runs, true, [](const RunRecord& r) { return r.raw_length; }), 3), w) : "")
         << meanStd(collect(runs, true, [](const RunRecord& r) { return r.min_clearance; }), 4) << "\n";
   }
-  if (scenario.queries.size() > 1) {
+  if (sharedBuild(scenario, options)) {
     out << "\n" << scenario.queries.size() << " queries per run, one build per run: build and query time (ms, "
         << "median over runs / over queries), queries solved, total time per run (build + all queries, mean)\n";
     out << std::left << std::setw(17) << "planner" << std::setw(14) << "solved" << std::setw(12) << "build"

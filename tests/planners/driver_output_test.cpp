@@ -229,6 +229,40 @@ TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
   EXPECT_NE(table.str().find("12 queries per run, one build per run"), std::string::npos) << table.str();
 }
 
+// A build that fails fails every query of its run, and the first query's record keeps the build's
+// time (a timed-out build was 0.0009 ms and ended the run's records). One --queries pair is built
+// once too, not solved as a single query.
+TEST(DriverOutput, AFailedBuildFailsEveryQueryAndKeepsItsTime) {
+  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
+  cspace::Scenario scenario = cspace::loadScenario(path);
+  scenario.queries = randomQueries(scenario, 3, 5);
+  DriverOptions options;
+  options.scenario = path;
+  options.planners = {"prm"};
+  options.runs = 2;
+  options.queries = 3;
+  options.time_limit = 1e-6;
+  std::ostringstream log, table;
+  const auto results = runExperiment(scenario, options, log);
+  ASSERT_EQ(results[0].runs.size(), 6u) << log.str();
+  for (const auto& r : results[0].runs) {
+    EXPECT_EQ(r.result.status, planners::PlanStatus::kTimeout) << "query " << r.query;
+    EXPECT_EQ(r.build_ms > 0, r.query == 0) << "query " << r.query;
+    if (r.query > 0) {
+      EXPECT_EQ(r.result.collision_checks, 0u);  // the build's are counted once
+    }
+  }
+  printTable(scenario, options, results, table);
+  EXPECT_NE(table.str().find("0/6"), std::string::npos) << table.str();
+
+  scenario.queries.resize(1);
+  options.queries = 1;
+  options.time_limit = 0;
+  const auto one = runExperiment(scenario, options, log);
+  ASSERT_EQ(one[0].runs.size(), 2u);
+  for (const auto& r : one[0].runs) EXPECT_GT(r.build_ms, 0);
+}
+
 // Seed by seed, every planner in turn (so load that changes during a run slows each alike), and each
 // planner's results are those it gives when run alone.
 TEST(DriverOutput, PlannersRunSeedBySeedAndGiveWhatTheyGiveAlone) {
