@@ -69,7 +69,10 @@ Plan plan(const Scenario& s, const std::string& planner, long long seed, const p
   for (const auto& [key, value] : params) {
     const std::string name = py::str(key);
     // "sigma" is the planner's own; "fastron-fk.gamma" names a checker's parameter in full.
-    options.overrides.emplace_back(name.find('.') == std::string::npos ? planner + "." + name : name, parameterText(value));
+    const std::string full = name.find('.') == std::string::npos ? planner + "." + name : name;
+    for (const auto& given : options.overrides)
+      if (given.first == full) throw std::invalid_argument("params: " + full + " is given twice");
+    options.overrides.emplace_back(full, parameterText(value));
   }
   cspace::Scenario one = s.scenario;
   one.queries = {s.scenario.queries[query]};

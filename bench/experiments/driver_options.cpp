@@ -94,6 +94,9 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
       const size_t eq = kv.find('='), dot = kv.find('.');
       if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || eq == dot + 1)
         throw std::invalid_argument("flag --set: expected PLANNER.KEY=VALUE, got '" + kv + "'");
+      for (const auto& [key, value] : o.overrides)
+        if (key == kv.substr(0, eq))
+          throw std::invalid_argument("flag --set " + kv + ": " + key + " is already set to '" + value + "'");
       o.overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
     } else if (flag == "--merge") {
       while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0) o.merge_files.push_back(argv[++i]);

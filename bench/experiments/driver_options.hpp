@@ -8,7 +8,7 @@ namespace svmp::experiments {
 
 // Bounds of --seed and --threads; the Python module checks its arguments against the same.
 inline constexpr long kMaxSeed = 1L << 62;
-inline constexpr int kMaxThreads = 1024;
+inline constexpr int kMaxThreads = 256;  // 1,024 could not all be created under a 6 GB address limit
 // fcl, fastron-fk or fastron-rbf (--checker).
 bool isCheckerName(const std::string& name);
 

@@ -65,8 +65,12 @@ int main(int argc, char** argv) {
         return 2;
       }
       overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
-    } else
+    } else if (arg.rfind("--", 0) == 0) {
+      files.clear();  // --help, or a flag it does not know: the usage
+      break;
+    } else {
       files.push_back(arg);
+    }
   }
   if (files.empty()) {
     std::cerr << "usage: svpp-timing [--runs N] [--trials] [--set KEY=VALUE ...] FILE.yaml ...\n";
@@ -97,6 +101,8 @@ int main(int argc, char** argv) {
       for (int r = 0; r < runs; ++r) {
         const auto t0 = planners::Clock::now();
         const planners::PlanResult result = planner.solve(s.queries.front(), 1 + r);
+        if (result.status == planners::PlanStatus::kInvalidInput)  // another robot: no timing to pool
+          throw std::invalid_argument(file + ": " + result.message);
         p_total.add(planners::msSince(t0));
         total.add(p_total.values.back());
         solved += result.solved();
