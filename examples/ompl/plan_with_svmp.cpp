@@ -14,7 +14,10 @@ int main(int argc, char** argv) try {
   auto svmp = std::make_shared<sop::SvmpOmplPlanner>(setup->getSpaceInformation(), world->scenario().paramsFor("svmp"));
   svmp->params().setParam("repair_rounds", "10");  // any field of SvmpOptions, checked as in a scenario file
   setup->setPlanner(svmp);
-  if (setup->solve(5.0) != ompl::base::PlannerStatus::EXACT_SOLUTION) return 1;
+  if (setup->solve(5.0) != ompl::base::PlannerStatus::EXACT_SOLUTION) {
+    std::cerr << "svmp-ompl-example: no path: " << svmp->lastResult().message << "\n";
+    return 1;
+  }
   setup->getSolutionPath().printAsMatrix(std::cout);  // every segment certified collision-free
   std::cerr << svmp->lastResult().collision_checks << " collision checks, " << svmp->lastResult().milestones
             << " milestones\n";
