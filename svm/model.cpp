@@ -68,7 +68,11 @@ double BinaryModel::decisionAndGradient(const double* q, double* grad) const {
       const double* x = sv_.col(s).data();
       double dist = 0.0;
       for (int k = 0; k < d; ++k) dist += (x[k] - q[k]) * (x[k] - q[k]);
-      const double term = coef_[s] * expNonPositive(-kernel_.gamma * dist);
+      const double exponent = -kernel_.gamma * dist;
+      // expNonPositive holds its argument at -700 (e^-700 = 1e-304); beyond, the term and its
+      // gradient are zero to double precision, where 2 gamma e^-700 is not for a gamma of 1e300.
+      if (exponent < -700) continue;
+      const double term = coef_[s] * expNonPositive(exponent);
       f += term;
       // d/dq exp(-gamma |x - q|^2) = 2 gamma (x - q) exp(...)
       for (int k = 0; k < d; ++k) grad[k] += g2 * term * (x[k] - q[k]);

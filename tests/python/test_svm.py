@@ -54,6 +54,10 @@ def test_gradient_matches_finite_differences(model, queries):
         central = (model.decision(queries + step) - model.decision(queries - step)) / (2 * h)
         np.testing.assert_allclose(grad[:, k], central, rtol=1e-5, atol=1e-6)
     np.testing.assert_allclose(model.gradient(queries[7]), grad[7], rtol=1e-13)
+    # A kernel so narrow that every term far from the samples is below e^-700: F is the bias and
+    # grad F exactly zero there (it was 2 gamma e^-700 per term, about 1e-3 for a gamma of 1e300).
+    narrow = svmp.train(np.array([[0.0, 0.0], [1.0, 0.0]]), np.array([1.0, -1.0]), C=1.0, gamma=1e300)
+    np.testing.assert_array_equal(narrow.gradient(np.array([0.5, 0.5])), [0.0, 0.0])
 
 
 def test_truncated_evaluator_sums_the_terms_inside_its_radius(model, queries):
