@@ -75,7 +75,7 @@ void Planner::certify(PlanResult& result, std::uint64_t seed, const Termination&
     result.repaired_stretches += stats.invalid_stretches;
     result.exact_checks += stats.exact_checks;
     if (result.certified) return;
-    result.status = PlanStatus::kFailed;
+    result.status = stop() ? PlanStatus::kTimeout : PlanStatus::kFailed;  // a repair the limit cut short
     result.message = why;
     result.path.clear();
     return;

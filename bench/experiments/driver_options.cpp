@@ -66,8 +66,11 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
     else if (flag == "--planners") {
       o.planners.clear();
       std::stringstream list(value());
-      for (std::string name; std::getline(list, name, ',');)
+      for (std::string name; std::getline(list, name, ',');) {
+        if (std::find(o.planners.begin(), o.planners.end(), name) != o.planners.end())
+          throw std::invalid_argument("flag --planners: '" + name + "' listed twice");
         if (!name.empty()) o.planners.push_back(name);
+      }
       if (o.planners.empty()) throw std::invalid_argument("flag --planners: empty list");
     } else if (flag == "--runs") o.runs = static_cast<int>(parseLong(flag, value(), 1, 100000));
     else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, kMaxSeed));

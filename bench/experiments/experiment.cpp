@@ -156,11 +156,16 @@ void writePictures(const std::string& dir, const cspace::Scenario& scenario, con
   content.risk = view.risk;
   content.roadmap = view.roadmap;
   const std::string base = dir + "/" + safeFileName(scenario.name + "_" + planner.name());
-  if (writeConfigurationSpaceSvg(base + "_cspace.svg", content)) log << "  wrote " << base << "_cspace.svg\n";
-  if (writeWorkspaceSvg(base + "_workspace.svg", content)) log << "  wrote " << base << "_workspace.svg\n";
+  std::vector<std::string> wrote;
+  if (writeConfigurationSpaceSvg(base + "_cspace.svg", content)) wrote.push_back(base + "_cspace.svg");
+  if (writeWorkspaceSvg(base + "_workspace.svg", content)) wrote.push_back(base + "_workspace.svg");
   if (view.svpp && writeSvppSvg(base + "_svpp.svg", content.title, *view.svpp, scenario.robot->lowerLimits(),
                                 scenario.robot->upperLimits()))
-    log << "  wrote " << base << "_svpp.svg\n";
+    wrote.push_back(base + "_svpp.svg");
+  for (const std::string& file : wrote) log << "  wrote " << file << "\n";
+  if (wrote.empty())
+    log << "  --svg: no picture of " << planner.name() << " on '" << scenario.robot->name()
+        << "' (pictures draw 2-D configuration spaces and planar workspaces)\n";
 }
 
 }  // namespace
@@ -355,7 +360,7 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
   o << "{ \"scenario\": " << jsonString(scenario.name) << ", \"file\": " << jsonString(scenario.path)
     << ", \"dof\": " << scenario.robot->dof() << ", \"runs\": " << options.runs
     << ", \"queries\": " << scenario.queries.size() << ", \"seed\": " << options.seed
-    << ", \"threads\": " << options.threads << ", \"simplified\": " << (options.simplify ? "true" : "false")
+    << ", \"threads\": " << options.threads << ", \"time_limit\": " << options.time_limit << ", \"simplified\": " << (options.simplify ? "true" : "false")
     << ", \"simplifier\": \"" << (!options.simplify ? "none" : options.simplify_svm ? "svpp" : "shortcut") << "\""
     << ", \"checker\": " << jsonString(options.checker) << ", \"random_queries\": " << options.queries
     << ", \"overrides\": " << overridesJson(options) << ",\n  \"results\": [\n";

@@ -91,8 +91,11 @@ std::string svgNumber(double v) {
 
 std::string escapeXml(const std::string& text) {
   std::string out;
-  for (char ch : text)
-    out += ch == '&' ? "&amp;" : ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : std::string(1, ch);
+  for (char ch : text) {
+    const bool control = static_cast<unsigned char>(ch) < 0x20 && ch != '\t' && ch != '\n' && ch != '\r';
+    // XML 1.0 has no way to write the other control characters, not even as references.
+    out += ch == '&' ? "&amp;" : ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : control ? "?" : std::string(1, ch);
+  }
   return out;
 }
 

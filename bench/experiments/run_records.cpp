@@ -98,7 +98,7 @@ std::string listed(const std::set<std::string>& overrides) {
 
 // The fields every shard of one merge must share (the seed and the number of runs are what differ).
 const char* const kSharedFields[] = {"scenario", "file", "dof", "queries", "random_queries", "threads",
-                                     "simplified", "simplifier", "checker"};
+                                     "time_limit", "simplified", "simplifier", "checker"};
 
 // What the shards of one merge add up to, one file at a time.
 struct ShardUnion {
@@ -116,8 +116,8 @@ struct ShardUnion {
     if (first.is_null()) first = shard;
     for (const char* field : kSharedFields) {
       if (!shard.contains(field))
-        throw std::runtime_error(file + ": field '" + field + "' missing (written by an svmp-plan without per-run "
-                                 "records? rerun the shard)");
+        throw std::runtime_error(file + ": field '" + field + "' missing (written by an older svmp-plan? rerun "
+                                 "the shard)");
       if (shard[field] != first[field])
         throw std::runtime_error(file + ": field '" + field + "' is " + shard[field].dump() + ", but " + first_file +
                                  " has " + first[field].dump());
@@ -268,6 +268,7 @@ MergedShards mergeShards(const std::vector<std::string>& files, const std::strin
   o.runs = static_cast<int>(highest - lowest + 1);
   o.seed = lowest;
   o.threads = get<int>(first, "threads", files.front());
+  o.time_limit = get<double>(first, "time_limit", files.front());
   o.queries = get<int>(first, "random_queries", files.front());
   o.checker = get<std::string>(first, "checker", files.front());
   o.simplify = get<bool>(first, "simplified", files.front());

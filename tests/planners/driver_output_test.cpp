@@ -229,6 +229,13 @@ TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
   EXPECT_NE(table.str().find("12 queries per run, one build per run"), std::string::npos) << table.str();
 }
 
+// SVG text: markup escaped, and control characters, which XML 1.0 cannot carry even as
+// references, replaced (a scenario named "fig\x01" gave files no XML parser read).
+TEST(DriverOutput, SvgTextIsWellFormedXml) {
+  EXPECT_EQ(escapeXml("a<b>&c"), "a&lt;b&gt;&amp;c");
+  EXPECT_EQ(escapeXml(std::string("fig\x01\x1f\tend\n")), "fig??\tend\n");
+}
+
 // A build that fails fails every query of its run, and the first query's record keeps the build's
 // time (a timed-out build was 0.0009 ms and ended the run's records). One --queries pair is built
 // once too, not solved as a single query.

@@ -1,5 +1,6 @@
 #include "bench/experiments/fastron/planning_experiment.hpp"
 
+#include <algorithm>
 #include <iomanip>
 #include <tuple>
 #include <map>
@@ -28,8 +29,12 @@ struct CheckerWorld {
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
+  for (std::string item; std::getline(in, item, ',');) {
+    if (std::find(out.begin(), out.end(), item) != out.end())
+      throw std::invalid_argument("flag --planners: '" + item + "' listed twice");
     if (!item.empty()) out.push_back(item);
+  }
+  if (out.empty()) throw std::invalid_argument("flag --planners: empty list");
   return out;
 }
 
@@ -92,6 +97,8 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
             const std::uint64_t exact0 = exact->collisionChecks();
             const auto t0 = planners::Clock::now();
             const auto r = planner->solve(query, rng(), planners::Termination::after(options.time_limit));
+            if (r.status == planners::PlanStatus::kInvalidInput)  // the robot is not the planner's
+              throw std::invalid_argument(planner_name + ": " + r.message);
             row.time_ms.push_back(planners::msSince(t0) - r.counting_ms);
             ++row.runs;
             row.proxy_checks.push_back(w.validator ? double(r.collision_checks) : 0.0);
