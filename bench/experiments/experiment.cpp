@@ -253,7 +253,8 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
           record.result = planner.solve(queries[i], seed, stop);
         } else if (!planner.built()) {
           if (i == 0) record.result = build;
-          record.result.status = build.status, record.result.message = build.message;
+          record.result.status = build.status;
+          record.result.message = build.message;
         } else {
           record.result = planner.query(queries[i], seed, stop);
         }
@@ -282,14 +283,11 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         }
         measurePath(scenario, world.space, world.measuring, record);
         if (r == 0 && i == 0 && !options.svg_dir.empty()) writePictures(options.svg_dir, scenario, planner, record, log);
-        if (shared_build && !planner.built() && i > 0) {  // the build's failure, logged once
-          runs.runs.push_back(std::move(record));
-          continue;
-        }
-        log << "  " << runs.planner << " seed " << seed << (shared_build ? " query " + std::to_string(i) : "")
-            << ": " << planners::planStatusName(record.result.status) << ", " << record.result.collision_checks
-            << " checks, " << std::fixed << std::setprecision(1) << record.time_ms << " ms"
-            << (record.result.message.empty() ? "" : " (" + record.result.message + ")") << "\n";
+        if (planner.built() || i == 0)  // a failed build is logged once, not for every query
+          log << "  " << runs.planner << " seed " << seed << (shared_build ? " query " + std::to_string(i) : "")
+              << ": " << planners::planStatusName(record.result.status) << ", " << record.result.collision_checks
+              << " checks, " << std::fixed << std::setprecision(1) << record.time_ms << " ms"
+              << (record.result.message.empty() ? "" : " (" + record.result.message + ")") << "\n";
         if (r == 0 && i == 0)  // the same scenario gives every run the same warnings
           for (const std::string& w : record.result.warnings) log << "  " << runs.planner << " warning: " << w << "\n";
         runs.runs.push_back(std::move(record));
@@ -360,7 +358,8 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
   o << "{ \"scenario\": " << jsonString(scenario.name) << ", \"file\": " << jsonString(scenario.path)
     << ", \"dof\": " << scenario.robot->dof() << ", \"runs\": " << options.runs
     << ", \"queries\": " << scenario.queries.size() << ", \"seed\": " << options.seed
-    << ", \"threads\": " << options.threads << ", \"time_limit\": " << options.time_limit << ", \"simplified\": " << (options.simplify ? "true" : "false")
+    << ", \"threads\": " << options.threads << ", \"time_limit\": " << options.time_limit
+    << ", \"simplified\": " << (options.simplify ? "true" : "false")
     << ", \"simplifier\": \"" << (!options.simplify ? "none" : options.simplify_svm ? "svpp" : "shortcut") << "\""
     << ", \"checker\": " << jsonString(options.checker) << ", \"random_queries\": " << options.queries
     << ", \"overrides\": " << overridesJson(options) << ",\n  \"results\": [\n";
