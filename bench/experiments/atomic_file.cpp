@@ -25,6 +25,12 @@ void writeFileAtomically(const std::string& file, const std::string& text) {
 void checkWritable(const std::string& flag, const std::string& file) {
   if (std::filesystem::is_directory(file))
     throw std::runtime_error("flag " + flag + ": cannot write '" + file + "': it is a directory");
+  // Its folder is made, as --svg's is (the docs write into results/ subfolders).
+  if (const std::filesystem::path parent = std::filesystem::path(file).parent_path(); !parent.empty()) {
+    std::error_code error;
+    if (!std::filesystem::create_directories(parent, error) && error)
+      throw std::runtime_error("flag " + flag + ": cannot create the folder of '" + file + "': " + error.message());
+  }
   const std::string probe = file + ".tmp";
   errno = 0;
   std::ofstream out(probe, std::ios::binary | std::ios::trunc);

@@ -7,8 +7,9 @@ namespace svmp::experiments {
 
 void writeFileAtomically(const std::string& file, const std::string& text);
 
-// Throws std::runtime_error (naming `flag`, the file and the OS reason) when `file` could not be created
-// in its directory; run before the work so a bad path fails at once, not after the whole run.
+// Makes `file`'s folder, then throws std::runtime_error (naming `flag`, the file and the OS reason)
+// when `file` could not be created there; run before the work so a bad path fails at once, not after
+// the whole run.
 void checkWritable(const std::string& flag, const std::string& file);
 
 }  // namespace svmp::experiments
