@@ -98,7 +98,7 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const robots::Robot> robot,
       touching[p] += linksCollide(ws, candidates[p].first, candidates[p].second);
   }
   for (size_t p = 0; p < candidates.size(); ++p)
-    if (touching[p] < kSamples) self_pairs_.push_back(candidates[p]);
+    (touching[p] < kSamples ? self_pairs_ : dropped_pairs_).push_back(candidates[p]);
 }
 
 CollisionChecker::~CollisionChecker() = default;

@@ -61,6 +61,9 @@ class CollisionChecker final : public ValidityChecker {
   std::uint64_t distanceQueries() const override { return distances_.load(std::memory_order_relaxed); }
   bool checksSelfCollision() const override { return !self_pairs_.empty(); }
   const std::vector<std::pair<int, int>>& selfCollisionPairs() const { return self_pairs_; }
+  // Non-adjacent pairs left out because they touch in every sampled configuration (joined by
+  // construction, or overlapping wherever the joint limits allow: then nothing checks them).
+  const std::vector<std::pair<int, int>>& droppedSelfCollisionPairs() const { return dropped_pairs_; }
 
  private:
   struct Workspace;
@@ -73,7 +76,7 @@ class CollisionChecker final : public ValidityChecker {
   std::shared_ptr<const robots::Robot> robot_;
   std::shared_ptr<const Environment> env_;
   std::unique_ptr<const ObstacleGrid> grid_;  // the broadphase, over many obstacles
-  std::vector<std::pair<int, int>> self_pairs_;
+  std::vector<std::pair<int, int>> self_pairs_, dropped_pairs_;
   std::uint64_t instance_id_;
   mutable std::mutex workspaces_mutex_;
   mutable std::vector<std::unique_ptr<Workspace>> workspaces_;

@@ -164,6 +164,12 @@ TEST(ScenarioTest, MalformedInputsNameFieldAndValue) {
   expectErrorNames(pointScenarioWith("goal: [9, 5]", "goal: [9, five]"), {"goal[1]", "five"});
   expectErrorNames(pointScenarioWith("upper: [10, 10]", "upper: [10, -1]"), {"robot.bounds", "joint 2"});
   expectErrorNames(pointScenarioWith("sigma: 0.5", "sigma: [0.5]"), {"planners.svmp.sigma"});
+  // A DH arm whose segments all have zero length has nothing that could collide: its clearance
+  // read "inf" inside a sphere that engulfed it.
+  expectErrorNames("robot: {type: dh_arm, dh: [{a: 0, alpha: 0, d: 0}, {a: 0, alpha: pi/2, d: 0}], "
+                   "link_radius: [0.1, 0.1], limits: {lower: [-3, -3], upper: [3, 3]}}\n"
+                   "start: [-1, 0]\ngoal: [1, 0]\nresolution: 0.01\n",
+                   {"robot", "no collision shape"});
 }
 
 TEST(ScenarioTest, WrongNodeKindsAreScenarioErrors) {
