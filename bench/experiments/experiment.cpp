@@ -212,6 +212,9 @@ void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& opt
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
                                        std::ostream& log) {
   const World world(scenario, options, log);
+  for (const auto& [a, b] : world.checker.droppedSelfCollisionPairs())
+    log << "svmp-plan: links " << a << " and " << b
+        << " touch in every sampled configuration and are not checked against each other (--check)\n";
   // Every planner is built first: a bad parameter stops the run before any work.
   std::vector<std::map<std::string, std::string>> parameters;
   auto planners = makePlanners(scenario, options, world.context, &parameters);
