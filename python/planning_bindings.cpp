@@ -69,10 +69,12 @@ Plan plan(const Scenario& s, const std::string& planner, long long seed, const p
   for (const auto& [key, value] : params) {
     const std::string name = py::str(key);
     // "sigma" is the planner's own; "fastron-fk.gamma" names a checker's parameter in full.
-    const std::string full = name.find('.') == std::string::npos ? planner + "." + name : name;
-    for (const auto& given : options.overrides)
-      if (given.first == full) throw std::invalid_argument("params: " + full + " is given twice");
-    options.overrides.emplace_back(full, parameterText(value));
+    try {
+      experiments::addOverride(options, name.find('.') == std::string::npos ? planner + "." + name : name,
+                               parameterText(value));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("params: ") + e.what());
+    }
   }
   cspace::Scenario one = s.scenario;
   one.queries = {s.scenario.queries[query]};

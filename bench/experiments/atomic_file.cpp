@@ -26,11 +26,8 @@ void checkWritable(const std::string& flag, const std::string& file) {
   if (std::filesystem::is_directory(file))
     throw std::runtime_error("flag " + flag + ": cannot write '" + file + "': it is a directory");
   // Its folder is made, as --svg's is (the docs write into results/ subfolders).
-  if (const std::filesystem::path parent = std::filesystem::path(file).parent_path(); !parent.empty()) {
-    std::error_code error;
-    if (!std::filesystem::create_directories(parent, error) && error)
-      throw std::runtime_error("flag " + flag + ": cannot create the folder of '" + file + "': " + error.message());
-  }
+  if (const std::filesystem::path parent = std::filesystem::path(file).parent_path(); !parent.empty())
+    makeDirectory(flag, parent.string());
   const std::string probe = file + ".tmp";
   errno = 0;
   std::ofstream out(probe, std::ios::binary | std::ios::trunc);
@@ -40,6 +37,12 @@ void checkWritable(const std::string& flag, const std::string& file) {
   }
   out.close();
   std::remove(probe.c_str());
+}
+
+void makeDirectory(const std::string& flag, const std::string& dir) {
+  std::error_code error;
+  if (!std::filesystem::create_directories(dir, error) && error)
+    throw std::runtime_error("flag " + flag + ": cannot create directory '" + dir + "': " + error.message());
 }
 
 }  // namespace svmp::experiments

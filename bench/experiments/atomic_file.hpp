@@ -11,5 +11,8 @@ void writeFileAtomically(const std::string& file, const std::string& text);
 // when `file` could not be created there; run before the work so a bad path fails at once, not after
 // the whole run.
 void checkWritable(const std::string& flag, const std::string& file);
+// Makes the folder `dir` (with its parents) for `flag`; throws std::runtime_error naming both and the
+// OS reason when it cannot.
+void makeDirectory(const std::string& flag, const std::string& dir);
 
 }  // namespace svmp::experiments

@@ -54,6 +54,24 @@ const char* driverUsage() {
          "              run's table and JSON; the scenario is the shards' \"file\" unless --scenario is given\n";
 }
 
+std::vector<std::string> parsePlannerList(const std::string& text) {
+  std::vector<std::string> names;
+  std::stringstream list(text);
+  for (std::string name; std::getline(list, name, ',');) {
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      throw std::invalid_argument("flag --planners: '" + name + "' listed twice");
+    if (!name.empty()) names.push_back(name);
+  }
+  if (names.empty()) throw std::invalid_argument("flag --planners: empty list");
+  return names;
+}
+
+void addOverride(DriverOptions& options, const std::string& key, const std::string& value) {
+  for (const auto& [given, was] : options.overrides)
+    if (given == key) throw std::invalid_argument(key + " is already set to '" + was + "'");
+  options.overrides.emplace_back(key, value);
+}
+
 DriverOptions parseDriverOptions(int argc, const char* const* argv) {
   DriverOptions o;
   for (int i = 1; i < argc; ++i) {
@@ -63,16 +81,8 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
       return argv[++i];
     };
     if (flag == "--scenario") o.scenario = value();
-    else if (flag == "--planners") {
-      o.planners.clear();
-      std::stringstream list(value());
-      for (std::string name; std::getline(list, name, ',');) {
-        if (std::find(o.planners.begin(), o.planners.end(), name) != o.planners.end())
-          throw std::invalid_argument("flag --planners: '" + name + "' listed twice");
-        if (!name.empty()) o.planners.push_back(name);
-      }
-      if (o.planners.empty()) throw std::invalid_argument("flag --planners: empty list");
-    } else if (flag == "--runs") o.runs = static_cast<int>(parseLong(flag, value(), 1, 100000));
+    else if (flag == "--planners") o.planners = parsePlannerList(value());
+    else if (flag == "--runs") o.runs = static_cast<int>(parseLong(flag, value(), 1, 100000));
     else if (flag == "--seed") o.seed = static_cast<unsigned long>(parseLong(flag, value(), 0, kMaxSeed));
     else if (flag == "--threads") o.threads = static_cast<int>(parseLong(flag, value(), 1, kMaxThreads));
     else if (flag == "--time-limit") o.time_limit = parseDouble(flag, value(), 1e-6, 1e7);
@@ -97,10 +107,11 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
       const size_t eq = kv.find('='), dot = kv.find('.');
       if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || eq == dot + 1)
         throw std::invalid_argument("flag --set: expected PLANNER.KEY=VALUE, got '" + kv + "'");
-      for (const auto& [key, value] : o.overrides)
-        if (key == kv.substr(0, eq))
-          throw std::invalid_argument("flag --set " + kv + ": " + key + " is already set to '" + value + "'");
-      o.overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+      try {
+        addOverride(o, kv.substr(0, eq), kv.substr(eq + 1));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("flag --set " + kv + ": " + e.what());
+      }
     } else if (flag == "--merge") {
       while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0) o.merge_files.push_back(argv[++i]);
       if (o.merge_files.empty()) throw std::invalid_argument("flag --merge: expected shard JSON files");

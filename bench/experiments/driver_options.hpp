@@ -36,6 +36,13 @@ struct DriverOptions {
   std::vector<std::string> merge_files;
 };
 
+// A comma-separated --planners value; throws std::invalid_argument for an empty list or a name
+// listed twice.
+std::vector<std::string> parsePlannerList(const std::string& text);
+// Adds PLANNER.KEY = VALUE to `options.overrides`; throws std::invalid_argument when the key is
+// already set (the last value would silently win).
+void addOverride(DriverOptions& options, const std::string& key, const std::string& value);
+
 // A flag's integer or number within [min, max]; throws std::invalid_argument naming the flag and value.
 long parseLong(const std::string& flag, const std::string& value, long min, long max);
 double parseDouble(const std::string& flag, const std::string& value, double min, double max);

@@ -3,7 +3,6 @@
 // --merge joins the JSON of a sweep's shards (scripts/sweep) into the single run's table and JSON.
 // Bad input: one clear error, exit status 2.
 #include <chrono>
-#include <filesystem>
 #include <iostream>
 
 #include "bench/experiments/atomic_file.hpp"
@@ -43,13 +42,8 @@ int main(int argc, char** argv) {
       return experiments::printScenarioCheck(scenario, std::cout) ? 0 : 1;
     }
     experiments::requireValidConfigurations(scenario);
-    for (const auto& [flag, dir] : {std::pair{"--svg", options.svg_dir}, std::pair{"--path-dir", options.paths_dir}}) {
-      std::error_code error;
-      if (!dir.empty() && !std::filesystem::create_directories(dir, error) && error) {
-        std::cerr << "svmp-plan: flag " << flag << ": cannot create directory '" << dir << "': " << error.message() << "\n";
-        return 2;
-      }
-    }
+    for (const auto& [flag, dir] : {std::pair{"--svg", options.svg_dir}, std::pair{"--path-dir", options.paths_dir}})
+      if (!dir.empty()) experiments::makeDirectory(flag, dir);
     if (!options.json_path.empty()) experiments::checkWritable("--json", options.json_path);
     if (!options.paths_json.empty()) experiments::checkWritable("--paths", options.paths_json);
     if (!options.ompl_log.empty()) {

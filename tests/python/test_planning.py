@@ -111,7 +111,7 @@ def test_bad_plan_arguments_raise_value_error(fig35):
         svmp.plan(fig35, "svmp", params={"sigma": -1})
     with pytest.raises(ValueError, match="samplez"):
         svmp.plan(fig35, "prm", params={"samplez": 10})
-    with pytest.raises(ValueError, match="svmp.sigma is given twice"):
+    with pytest.raises(ValueError, match="params: svmp.sigma is already set to '0.4'"):
         svmp.plan(fig35, "svmp", params={"sigma": 0.4, "svmp.sigma": 0.5})
     with pytest.raises(ValueError, match="query is 1: the scenario has 1 query"):
         svmp.plan(fig35, "svmp", query=1)

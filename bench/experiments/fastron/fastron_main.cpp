@@ -3,12 +3,12 @@
 // (Fig 6); picture: Fig 1 (a 3-DoF arm's C-space slice, SVG); all: every one. Prints tables, writes
 // JSON (whole or not at all). Bad input: one error naming the flag or field, exit status 2.
 #include <cstdlib>
-#include <filesystem>
 #include <iostream>
 #include <map>
 #include <sstream>
 
 #include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/driver_options.hpp"
 #include "bench/experiments/fastron/collision_experiment.hpp"
 #include "bench/experiments/fastron/cspace_picture.hpp"
 #include "bench/experiments/fastron/planning_experiment.hpp"
@@ -115,8 +115,7 @@ int main(int argc, char** argv) {
     const auto rbf = cspace::FastronCheckerOptions::fromParameters("fastron-rbf", flags.params["fastron-rbf"]);
     for (auto& [name, p] : flags.params) p.requireAllUsed();
     if (!flags.json.empty()) experiments::checkWritable("--json", flags.json);
-    if (std::error_code error; !flags.svg.empty() && !std::filesystem::create_directories(flags.svg, error) && error)
-      throw std::runtime_error("flag --svg: cannot create directory '" + flags.svg + "': " + error.message());
+    if (!flags.svg.empty()) experiments::makeDirectory("--svg", flags.svg);
     const bool all = flags.experiment == "all";
     std::ostringstream json;
     json << "{\"scenario\": \"" << scenario.name << "\", \"seed\": " << flags.seed;
@@ -133,7 +132,7 @@ int main(int argc, char** argv) {
       experiments::fastron::PlanningExperimentOptions o;
       o.trials = flags.trials, o.moves = flags.moves, o.plans_per_move = flags.plans_per_move, o.seed = flags.seed;
       o.time_limit = flags.time_limit, o.fk = fk, o.rbf = rbf;
-      if (!flags.planners.empty()) o.planners = experiments::fastron::splitList(flags.planners);
+      if (!flags.planners.empty()) o.planners = experiments::parsePlannerList(flags.planners);
       const auto r = experiments::fastron::runPlanningExperiment(scenario, o, std::cerr);
       experiments::fastron::printPlanningTable(r, std::cout);
       json << ", \"planning\": " << experiments::fastron::planningJson(r);

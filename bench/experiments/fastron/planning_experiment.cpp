@@ -1,6 +1,5 @@
 #include "bench/experiments/fastron/planning_experiment.hpp"
 
-#include <algorithm>
 #include <iomanip>
 #include <tuple>
 #include <map>
@@ -25,18 +24,6 @@ struct CheckerWorld {
 };
 
 }  // namespace
-
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    if (std::find(out.begin(), out.end(), item) != out.end())
-      throw std::invalid_argument("flag --planners: '" + item + "' listed twice");
-    if (!item.empty()) out.push_back(item);
-  }
-  if (out.empty()) throw std::invalid_argument("flag --planners: empty list");
-  return out;
-}
 
 PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const PlanningExperimentOptions& options,
                                       std::ostream& log) {

@@ -48,6 +48,5 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
                                       std::ostream& log);
 void printPlanningTable(const PlanningResults& results, std::ostream& out);
 std::string planningJson(const PlanningResults& results);
-std::vector<std::string> splitList(const std::string& text);
 
 }  // namespace svmp::experiments::fastron
