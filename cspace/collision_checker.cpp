@@ -70,6 +70,10 @@ struct CollisionChecker::Workspace {
   std::vector<std::vector<Placed>> parts;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> obstacles;  // index = id - 1
   std::vector<Placed> obstacle_parts;                              // index = id - 1
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> base;       // robots::Robot::baseShapes, placed once
+  std::vector<Placed> base_parts;
+
+  std::vector<Placed>& partsOf(int link) { return link == robots::Robot::kBase ? base_parts : parts[link]; }
 };
 
 CollisionChecker::CollisionChecker(std::shared_ptr<const robots::Robot> robot,
@@ -115,18 +119,21 @@ std::unique_ptr<CollisionChecker::Workspace> CollisionChecker::makeWorkspace() c
       part.object = ws->links[i].back().get();
       ws->parts[i].push_back(part);
     }
-  for (const auto& o : env_->obstacles()) {
-    auto obj = std::make_unique<fcl::CollisionObjectd>(makeGeometry(o.shape), o.shape.pose.linear(),
-                                                       o.shape.pose.translation());
+  const auto placeFixed = [](const robots::Shape& shape, std::vector<std::unique_ptr<fcl::CollisionObjectd>>& objects,
+                             std::vector<Placed>& parts) {
+    auto obj = std::make_unique<fcl::CollisionObjectd>(makeGeometry(shape), shape.pose.linear(),
+                                                       shape.pose.translation());
     obj->computeAABB();
     Placed part;
-    part.shape = &o.shape;
+    part.shape = &shape;
     part.object = obj.get();
-    part.place(o.shape.pose);
+    part.place(shape.pose);
     part.object_placed = true;
-    ws->obstacle_parts.push_back(part);
-    ws->obstacles.push_back(std::move(obj));
-  }
+    parts.push_back(part);
+    objects.push_back(std::move(obj));
+  };
+  for (const auto& o : env_->obstacles()) placeFixed(o.shape, ws->obstacles, ws->obstacle_parts);
+  for (const auto& shape : robot_->baseShapes()) placeFixed(shape, ws->base, ws->base_parts);
   return ws;
 }
 
@@ -181,8 +188,8 @@ double boxDistance(const Placed& a, const Placed& b) { return std::sqrt(a.box.sq
 }  // namespace
 
 bool CollisionChecker::linksCollide(Workspace& ws, int a, int b) const {
-  for (Placed& pa : ws.parts[a])
-    for (Placed& pb : ws.parts[b])
+  for (Placed& pa : ws.partsOf(a))
+    for (Placed& pb : ws.partsOf(b))
       if (pairCollides(pa, pb)) return true;
   return false;
 }
@@ -277,10 +284,11 @@ bool CollisionChecker::freeDistances(const Eigen::Ref<const Eigen::VectorXd>& q,
       for (const Placed& part : ws.parts[i])
         for (const auto& o : env_->obstacles())
           if (!o.is_virtual && touches(i, part, ws.obstacle_parts[o.id - 1])) return true;
-    // A self pair counts for its distal link, whose bound covers its motion relative to the other.
+    // A self pair counts for its distal link, whose bound covers its motion relative to the other
+    // (the base, kBase, comes first).
     for (const auto& [a, b] : self_pairs_)
-      for (const Placed& pa : ws.parts[a])
-        for (const Placed& pb : ws.parts[b])
+      for (const Placed& pa : ws.partsOf(a))
+        for (const Placed& pb : ws.partsOf(b))
           if (touches(std::max(a, b), pa, pb)) return true;
     return false;
   };

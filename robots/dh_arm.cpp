@@ -71,6 +71,9 @@ DhArm::DhArm(DhArmSpec spec)
     if (!(spec_.link_radius[i] > 0))
       throw std::invalid_argument(name_ + ": link " + std::to_string(i + 1) + " radius must be positive");
   }
+  // Row 1 moves frame 1's origin before joint 1 turns (modified DH), so that segment is static.
+  addSegmentCapsules(spec_.rows[0], spec_.link_radius[0], base_shapes_);
+  for (Shape& shape : base_shapes_) shape.pose = spec_.base * shape.pose;
   link_shapes_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const DhRow& next = i + 1 < n ? spec_.rows[i + 1] : spec_.flange;

@@ -2,7 +2,9 @@
 // Serial arm described by a modified (Craig) Denavit-Hartenberg table: frame i is reached from frame
 // i-1 by RotX(alpha_{i-1}) TransX(a_{i-1}) RotZ(theta_i + offset_i) TransZ(d_i). Presets: the CRS-F3 of
 // thesis Table 4.3 (ch. 4.2.2) and the Franka Emika Panda. Link i's shapes live in frame i; by default
-// each link is a capsule along the segment(s) from joint i to joint i+1 (or to the flange for the last).
+// each link is a capsule along the segment(s) from joint i to joint i+1 (or to the flange for the last),
+// and the base is one along the segment from the base frame to joint 1 (the Panda's 0.333 m column),
+// with joint 1's radius.
 // An optional tool (thesis Fig 4.12: the cubic frame) is a set of shapes in the flange frame, part of
 // the last link.
 #include "robots/robot.hpp"

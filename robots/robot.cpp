@@ -25,8 +25,11 @@ bool Robot::withinLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   return ((q - lower_).array() >= 0).all() && ((upper_ - q).array() >= 0).all();
 }
 
+std::string Robot::linkLabel(int link) { return link == kBase ? "base" : std::to_string(link); }
+
 std::vector<std::pair<int, int>> Robot::nonAdjacentLinkPairs() const {
   std::vector<int> solid;
+  if (!base_shapes_.empty()) solid.push_back(kBase);
   for (int i = 0; i < numLinks(); ++i)
     if (!link_shapes_[i].empty()) solid.push_back(i);
   std::vector<std::pair<int, int>> pairs;

@@ -31,8 +31,16 @@ class Robot {
   const Eigen::VectorXd& upperLimits() const { return upper_; }
   bool withinLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   const std::vector<Shape>& linkShapes(int link) const { return link_shapes_[link]; }
+  // The part of the robot no joint moves (a DH arm's column from its base to joint 1), in the world
+  // frame. It counts for self-collision only, as link kBase: an obstacle inside it would make every
+  // configuration collide, so there is nothing for a planner to learn from it.
+  static constexpr int kBase = -1;
+  const std::vector<Shape>& baseShapes() const { return base_shapes_; }
+  // "base" for kBase, else the link's index.
+  static std::string linkLabel(int link);
   // Links that may collide with each other: not adjacent along the chain (links without shapes are
   // skipped when deciding adjacency, so a spherical wrist's zero-length links do not hide a neighbour).
+  // The base comes first in the chain: (kBase, k) for every link k with shapes but the first.
   std::vector<std::pair<int, int>> nonAdjacentLinkPairs() const;
 
   // World pose of every link frame; poses is resized to numLinks().
@@ -80,6 +88,7 @@ class Robot {
   Eigen::VectorXd lower_, upper_;
   int workspace_dim_;
   std::vector<std::vector<Shape>> link_shapes_;
+  std::vector<Shape> base_shapes_;  // world frame
   Eigen::VectorXd joint_reach_;
   Eigen::MatrixXd link_reach_;  // (link k, joint j): reach of joint j over link k's points, 0 for j > k
 };

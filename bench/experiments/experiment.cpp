@@ -213,7 +213,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
                                        std::ostream& log) {
   const World world(scenario, options, log);
   for (const auto& [a, b] : world.checker.droppedSelfCollisionPairs())
-    log << "svmp-plan: links " << a << " and " << b
+    log << "svmp-plan: links " << robots::Robot::linkLabel(a) << " and " << robots::Robot::linkLabel(b)
         << " touch in every sampled configuration and are not checked against each other (--check)\n";
   // Every planner is built first: a bad parameter stops the run before any work.
   std::vector<std::map<std::string, std::string>> parameters;

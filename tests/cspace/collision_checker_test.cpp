@@ -169,6 +169,56 @@ TEST(CollisionCheckerTest, DhArmsAreNotSelfCollidingInNormalPoses) {
   EXPECT_LT(kept.size(), all.size());
 }
 
+// The least distance between two segments, by brute force over 101 points on each.
+double segmentDistance(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
+                       const Eigen::Vector3d& b1) {
+  double best = INFINITY;
+  for (int i = 0; i <= 100; ++i)
+    for (int j = 0; j <= 100; ++j)
+      best = std::min(best, ((a0 + (a1 - a0) * (i / 100.0)) - (b0 + (b1 - b0) * (j / 100.0))).norm());
+  return best;
+}
+
+TEST(CollisionCheckerTest, DhBaseColumnMeetsFoldedLinksAsCapsuleDistancesSay) {
+  // Every DH shape here is a capsule (no tool): a base-link pair collides when the axes come closer
+  // than the radii's sum. Configurations within 5 mm of contact are left out (the brute force's
+  // error is under 3 mm); some must hit the column and nothing else, or the column would go unseen.
+  for (const auto& spec : {robots::pandaSpec(), robots::crsF3Spec(6)}) {
+    const auto arm = std::make_shared<robots::DhArm>(spec);
+    const CollisionChecker checker(arm, environment({}));
+    ASSERT_FALSE(arm->baseShapes().empty());
+    const auto ends = [](const Shape& s, const Eigen::Isometry3d& at) {
+      return std::make_pair(at * (s.pose * Eigen::Vector3d(0, 0, -0.5 * s.dims.y())),
+                            at * (s.pose * Eigen::Vector3d(0, 0, 0.5 * s.dims.y())));
+    };
+    std::mt19937_64 rng(11);
+    Eigen::VectorXd q(arm->dof());
+    robots::Poses poses;
+    int column_only = 0, decided = 0;
+    for (int n = 0; n < 1500; ++n) {
+      for (int i = 0; i < q.size(); ++i)
+        q[i] = std::uniform_real_distribution<double>(arm->lowerLimits()[i], arm->upperLimits()[i])(rng);
+      arm->linkPoses(q, poses);
+      bool near_contact = false, column_hit = false, other_hit = false;
+      for (const auto& [a, b] : checker.selfCollisionPairs())
+        for (const Shape& sb : arm->linkShapes(b))
+          for (const Shape& sa : a == robots::Robot::kBase ? arm->baseShapes() : arm->linkShapes(a)) {
+            const auto [a0, a1] = ends(sa, a == robots::Robot::kBase ? Eigen::Isometry3d::Identity() : poses[a]);
+            const auto [b0, b1] = ends(sb, poses[b]);
+            const double gap = segmentDistance(a0, a1, b0, b1) - sa.dims.x() - sb.dims.x();
+            near_contact = near_contact || std::abs(gap) < 5e-3;
+            (a == robots::Robot::kBase ? column_hit : other_hit) |= gap < 0;
+          }
+      if (near_contact) continue;
+      ++decided;
+      EXPECT_EQ(checker.check(q) == kSelfCollisionHit, column_hit || other_hit) << spec.name << " q " << q.transpose();
+      column_only += column_hit && !other_hit;
+    }
+    EXPECT_GT(decided, 1000) << spec.name;
+    EXPECT_GT(column_only, 3) << spec.name;  // 7 and 8 of 1,500
+  }
+}
+
 TEST(CollisionCheckerTest, BroadphaseAgreesWithPerObstacleTests) {
   // 14 obstacles (> 8) go through the broadphase grid; hits() tests each obstacle on its own.
   std::mt19937_64 rng(3);

@@ -391,7 +391,31 @@ TEST(RobotTest, NonAdjacentPairsSkipLinksWithoutShapes) {
   const DhArm crs(crsF3Spec(6));
   EXPECT_TRUE(crs.linkShapes(3).empty());
   EXPECT_TRUE(crs.linkShapes(5).empty());
-  EXPECT_EQ(crs.nonAdjacentLinkPairs(), (std::vector<std::pair<int, int>>{{0, 2}, {0, 4}, {1, 4}}));
+  // The base column (kBase) comes before link 0 (the shoulder offset), so it faces links 1, 2 and 4.
+  EXPECT_EQ(crs.nonAdjacentLinkPairs(), (std::vector<std::pair<int, int>>{
+                                            {Robot::kBase, 1}, {Robot::kBase, 2}, {Robot::kBase, 4},
+                                            {0, 2}, {0, 4}, {1, 4}}));
+  EXPECT_TRUE(arm.baseShapes().empty());
+}
+
+TEST(RobotTest, DhBaseColumnRunsFromTheBaseToJointOne) {
+  // Panda: d1 = 0.333 along the base's z; joint 1's radius. A moved base moves the column with it.
+  DhArmSpec spec = pandaSpec();
+  spec.base = Eigen::Translation3d(0.5, -0.2, 0.1) * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitX());
+  const DhArm panda(spec);
+  ASSERT_EQ(panda.baseShapes().size(), 1u);
+  const Shape& column = panda.baseShapes()[0];
+  EXPECT_EQ(column.kind, ShapeKind::kCapsule);
+  EXPECT_DOUBLE_EQ(column.dims.x(), 0.06);
+  EXPECT_NEAR(column.dims.y(), 0.333, 1e-12);
+  // Its axis ends at the base's origin and at joint 1's origin, which no joint angle moves.
+  Poses poses;
+  panda.linkPoses(Eigen::VectorXd::Constant(7, 0.3), poses);
+  const Eigen::Vector3d top = column.pose * Eigen::Vector3d(0, 0, 0.1665);
+  const Eigen::Vector3d bottom = column.pose * Eigen::Vector3d(0, 0, -0.1665);
+  const bool top_at_joint_1 = (top - poses[0].translation()).norm() < 1e-9;
+  EXPECT_NEAR(((top_at_joint_1 ? bottom : top) - spec.base.translation()).norm(), 0, 1e-9);
+  EXPECT_NEAR(((top_at_joint_1 ? top : bottom) - poses[0].translation()).norm(), 0, 1e-9);
 }
 
 }  // namespace
