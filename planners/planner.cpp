@@ -30,6 +30,25 @@ class CounterScope {
   std::uint64_t checks_, calls_, certifier_calls_, distances_;
 };
 
+// The straight motion from start to goal, checked and (with a certifier) proven: the path when both
+// pass.
+bool straightMotionAnswers(const PlanningContext& context, const cspace::Query& query, PlanResult& result) {
+  auto t0 = Clock::now();
+  const bool free = context.validator.isValid(query.start, query.goal);
+  result.times.query_ms += msSince(t0);
+  if (!free) return false;
+  if (context.certifier) {
+    t0 = Clock::now();
+    const bool proven = context.certifier->isValid(query.start, query.goal);
+    result.times.certify_ms += msSince(t0);
+    if (!proven) return false;
+  }
+  result.status = PlanStatus::kSolved;
+  result.path = {query.start, query.goal};
+  result.certified = context.certifier != nullptr;
+  return true;
+}
+
 }  // namespace
 
 const char* planStatusName(PlanStatus status) {
@@ -103,6 +122,7 @@ PlanResult Planner::build(std::uint64_t seed, const Termination& stop) {
 PlanResult Planner::query(const cspace::Query& q, std::uint64_t seed, const Termination& stop) {
   if (!built_) throw std::logic_error(name() + ": query() before a successful build()");
   clearQuery();
+  straight_motion_blocked_ = false;
   const CounterScope scope(context_);
   PlanResult result;
   if (checkEndpoints(context_, q, result)) {
@@ -115,15 +135,19 @@ PlanResult Planner::query(const cspace::Query& q, std::uint64_t seed, const Term
 
 PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Termination& stop) {
   clear();
+  straight_motion_blocked_ = false;
   const CounterScope scope(context_);
   PlanResult result;
   if (checkEndpoints(context_, q, result)) {
-    buildRoadmap(seed, stop, result);
-    built_ = result.solved();
-    if (built_) {
-      result.status = PlanStatus::kFailed;
-      answer(q, seed, stop, result);
-      certify(result, seed, stop);
+    straight_motion_blocked_ = triesStraightMotionFirst() && !straightMotionAnswers(context_, q, result);
+    if (!result.solved()) {
+      buildRoadmap(seed, stop, result);
+      built_ = result.solved();
+      if (built_) {
+        result.status = PlanStatus::kFailed;
+        answer(q, seed, stop, result);
+        certify(result, seed, stop);
+      }
     }
   }
   scope.finish(result);

@@ -70,7 +70,9 @@ class Planner {
   virtual void clearQuery() {}
   // Forgets everything learned; the next query needs a new build().
   virtual void clear() = 0;
-  // clear(), build() and query() in one: counters, times and status cover all of it.
+  // clear(), build() and query() in one: counters, times and status cover all of it. A roadmap
+  // planner (triesStraightMotionFirst) whose query's straight motion is free and proven returns it
+  // without a build: the path its query would have returned first.
   PlanResult solve(const cspace::Query& query, std::uint64_t seed, const Termination& stop = {});
 
   virtual PlannerView view() const { return {}; }
@@ -92,6 +94,11 @@ class Planner {
   // False for planners whose path is the method's own answer (the thesis' local planner, SVPP's
   // separating surface): a stretch replanned by another planner would no longer be theirs.
   virtual bool repairable() const { return true; }
+  // True for the roadmap planners, whose query begins with the straight motion (queryRoadmap).
+  virtual bool triesStraightMotionFirst() const { return false; }
+  // Set by solve() when the straight motion was tried before the build and failed: the query need
+  // not try it again (it stays blocked, or unproven, on the same obstacles).
+  bool straight_motion_blocked_ = false;
 
   PlanningContext context_;
 

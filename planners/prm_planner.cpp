@@ -75,7 +75,8 @@ void PrmPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanR
 void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termination&, PlanResult& result) {
   const auto t0 = Clock::now();
   with_query_ = roadmap_;
-  QueryOutcome outcome = queryRoadmap(with_query_, *nn_, context_, query, options_.k, &roadmap_);
+  QueryOutcome outcome =
+      queryRoadmap(with_query_, *nn_, context_, query, options_.k, &roadmap_, !straight_motion_blocked_);
   result.times.query_ms += msSince(t0);
   result.path = std::move(outcome.path);
   result.certified = outcome.certified;

@@ -32,6 +32,7 @@ class PrmPlanner final : public Planner {
   const Roadmap& roadmap() const { return roadmap_; }
 
  protected:
+  bool triesStraightMotionFirst() const override { return true; }
   void buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) override;
   void answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
               PlanResult& result) override;

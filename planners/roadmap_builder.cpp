@@ -194,14 +194,14 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
 }
 
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                          const cspace::Query& query, int k, Roadmap* milestones) {
+                          const cspace::Query& query, int k, Roadmap* milestones, bool try_straight) {
   QueryOutcome out;
   out.start_node = roadmap.addNode(query.start);
   out.goal_node = roadmap.addNode(query.goal);
   // The straight motion first: when it is free and proven it is the shortest path there is, and the
   // endpoints' connections to the roadmap (long motions on an arm: about 300 checks each on
   // panda_shelf) are not needed.
-  if (connect(roadmap, context, out.start_node, out.goal_node, &out.certify_ms)) {
+  if (try_straight && connect(roadmap, context, out.start_node, out.goal_node, &out.certify_ms)) {
     out.path = {query.start, query.goal};
     out.certified = context.certifier != nullptr;
     return out;

@@ -43,7 +43,8 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
                             int& checks, double& certify_ms);
 
 // Adds start and goal to `roadmap` (the caller passes a copy when the roadmap must stay clean); when
-// the straight motion between them is free and proven, that is the path. Otherwise connects each to
+// the straight motion between them is free and proven, that is the path (not tried with
+// `try_straight` false: the caller knows it fails). Otherwise connects each to
 // its k nearest milestones (checked edges, proven too with a certifier) and searches the path
 // (provenPath): each unchecked edge of the path found is checked, and with context.certifier each
 // edge is proven free (once: checked and proven edges are marked); an edge that fails is removed and
@@ -51,6 +52,7 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
 // roadmap `roadmap` was copied from, gets the same marks and removals for edges between its nodes.
 // `lazy_checks` counts the motions checked.
 QueryOutcome queryRoadmap(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context,
-                          const cspace::Query& query, int k, Roadmap* milestones = nullptr);
+                          const cspace::Query& query, int k, Roadmap* milestones = nullptr,
+                          bool try_straight = true);
 
 }  // namespace svmp::planners

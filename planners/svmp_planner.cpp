@@ -382,10 +382,13 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   RepairTrail trail;
   std::optional<Roadmap> before_repair;  // restored when the query fails (below)
   bool full_trees_tried = false;         // joinByTrees of lazy_trees samples, once per query
+  bool try_straight = !straight_motion_blocked_;
   for (int round = 0;; ++round) {
     Roadmap& with_query = with_query_;
     with_query = roadmap_;
-    QueryOutcome outcome = queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_);
+    QueryOutcome outcome =
+        queryRoadmap(with_query, *nn_, context_, query, options_.k, &roadmap_, try_straight);
+    try_straight = false;  // the rounds add milestones, not free space
     result.times.certify_ms += outcome.certify_ms;
     if (!outcome.path.empty()) {
       result.path = std::move(outcome.path);

@@ -151,6 +151,7 @@ class SvmpPlanner final : public Planner {
   int pendingCentring() const { return static_cast<int>(uncentred_.size()); }
 
  protected:
+  bool triesStraightMotionFirst() const override { return true; }
   void buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) override;
   void answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
               PlanResult& result) override;

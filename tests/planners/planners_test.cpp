@@ -247,6 +247,42 @@ TEST(FewObstacles, SvmpWithNothingToLearnAnswersByTheStraightMotionOrTrees) {
   }
 }
 
+// A single query whose straight motion is free and proven needs no roadmap: svmp and prm return it
+// before building. Where it is blocked, solve() is build() then query(): the same path and checks
+// (the query does not try the straight motion again).
+TEST(Planners, RoadmapPlannersAnswerAFreeStraightMotionWithoutABuild) {
+  const std::string kOffTheLine =
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n  - {name: block, shape: box, size: [0.2, 0.2, 1], position: [0.5, 0.5, 0]}\n"
+      "start: [0.1, 0.1]\ngoal: [0.1, 0.9]\nresolution: 0.01\n";
+  auto w = makeWorld(kOffTheLine);
+  w->certify();
+  for (const std::string name : {"svmp", "prm"}) {
+    auto planner = w->planner(name);
+    const PlanResult r = planner->solve(w->query(), 1);
+    ASSERT_TRUE(r.solved()) << name << ": " << r.message;
+    EXPECT_TRUE(r.certified) << name;
+    EXPECT_EQ(r.path.size(), 2u) << name;
+    EXPECT_EQ(r.milestones, 0u) << name;
+    EXPECT_EQ(r.support_vectors, 0u) << name;
+    EXPECT_FALSE(planner->built()) << name;
+    EXPECT_LE(r.collision_checks, 100u) << name;  // the 0.8-long motion at resolution 0.01, nothing more
+  }
+  for (const std::string name : {"svmp", "prm"}) {
+    auto gap = makeWorld(gapScenario(0.03, kPlanners));
+    gap->certify();
+    auto planner = gap->planner(name);
+    const PlanResult solved = planner->solve(gap->query(), 4);
+    ASSERT_TRUE(solved.solved()) << name << ": " << solved.message;
+    EXPECT_GT(solved.path.size(), 2u) << name;
+    EXPECT_GT(solved.milestones, 0u) << name;
+    const PlanResult built = planner->build(4);
+    PlanResult queried = planner->query(gap->query(), 4);
+    addBuild(built, queried);
+    expectSameResult(solved, queried);
+  }
+}
+
 TEST(InvalidQueries, SvmpStepsOutOfOrderThrow) {
   auto w = makeWorld(gapScenario(0.03, kPlanners));
   SvmpPlanner svmp(w->context, SvmpOptions{});
