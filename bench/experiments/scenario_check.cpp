@@ -29,8 +29,9 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
       << " links, " << robot.numControlPoints() << " control points, "
       << checker.selfCollisionPairs().size() << " self-collision pairs\n";
   for (const auto& [a, b] : checker.droppedSelfCollisionPairs())
-    out << "warning    links " << robots::Robot::linkLabel(a) << " and " << robots::Robot::linkLabel(b) << " touch in every sampled configuration and are not checked "
-        << "against each other (joined by construction, or overlapping wherever the joint limits allow)\n";
+    out << "warning    links " << robots::Robot::linkLabel(a) << " and " << robots::Robot::linkLabel(b)
+        << " touch in every sampled configuration and are not checked against each other (joined by "
+        << "construction, or overlapping wherever the joint limits allow)\n";
   out << "limits     lower " << format(robot.lowerLimits()) << "\n           upper "
       << format(robot.upperLimits()) << "\n";
   out << "metric     weights " << format(scenario.metric_weights) << ", resolution "
