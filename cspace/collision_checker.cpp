@@ -101,8 +101,14 @@ CollisionChecker::CollisionChecker(std::shared_ptr<const robots::Robot> robot,
     for (size_t p = 0; p < candidates.size(); ++p)
       touching[p] += linksCollide(ws, candidates[p].first, candidates[p].second);
   }
+  // The base and the first link with shapes meet at joint 1: touching there is no news.
+  const auto at_joint_1 = std::find_if(candidates.begin(), candidates.end(),
+                                       [](const auto& pair) { return pair.first == robots::Robot::kBase; });
   for (size_t p = 0; p < candidates.size(); ++p)
-    (touching[p] < kSamples ? self_pairs_ : dropped_pairs_).push_back(candidates[p]);
+    if (touching[p] < kSamples)
+      self_pairs_.push_back(candidates[p]);
+    else if (candidates.begin() + p != at_joint_1)
+      dropped_pairs_.push_back(candidates[p]);
 }
 
 CollisionChecker::~CollisionChecker() = default;

@@ -26,8 +26,9 @@ class ObstacleGrid;
 
 class CollisionChecker final : public ValidityChecker {
  public:
-  // Non-adjacent link pairs that touch in every one of 100 seeded random configurations (links joined
-  // at a spherical wrist, say) are excluded from self-collision, as MoveIt's "always in collision".
+  // Non-adjacent link pairs (robots::Robot::nonAdjacentLinkPairs) that touch in every one of 100
+  // seeded random configurations (links joined at a spherical wrist, say) are excluded from
+  // self-collision, as MoveIt's "always in collision".
   CollisionChecker(std::shared_ptr<const robots::Robot> robot, std::shared_ptr<const Environment> env,
                    bool self_collision = true);
   ~CollisionChecker();
@@ -62,7 +63,8 @@ class CollisionChecker final : public ValidityChecker {
   bool checksSelfCollision() const override { return !self_pairs_.empty(); }
   const std::vector<std::pair<int, int>>& selfCollisionPairs() const { return self_pairs_; }
   // Non-adjacent pairs left out because they touch in every sampled configuration (joined by
-  // construction, or overlapping wherever the joint limits allow: then nothing checks them).
+  // construction, or overlapping wherever the joint limits allow: then nothing checks them); not the
+  // base and the first link with shapes, which meet at joint 1.
   const std::vector<std::pair<int, int>>& droppedSelfCollisionPairs() const { return dropped_pairs_; }
 
  private:

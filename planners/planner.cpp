@@ -140,7 +140,12 @@ PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Term
   PlanResult result;
   if (checkEndpoints(context_, q, result)) {
     straight_motion_blocked_ = triesStraightMotionFirst() && !straightMotionAnswers(context_, q, result);
-    if (!result.solved()) {
+    // One motion check is not interrupted (at most cspace::kMaxSegmentChecks configurations): a limit
+    // it used up ends the run here, saying so, and a path it found stands.
+    if (!result.solved() && straight_motion_blocked_ && stop()) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached while checking the straight start-goal motion";
+    } else if (!result.solved()) {
       buildRoadmap(seed, stop, result);
       built_ = result.solved();
       if (built_) {

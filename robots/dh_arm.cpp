@@ -240,7 +240,7 @@ DhArmSpec crsF3Spec(int joints) {
                                 std::to_string(joints));
   DhArmSpec s;
   s.name = joints == 6 ? "crs_f3" : "crs_f3_3dof";
-  // Thesis Table 4.3 (alpha_{i-1}, a_{i-1}, d_i, theta_i).
+  // Thesis Table 4.3, written as {a_{i-1}, alpha_{i-1}, d_i, theta_i offset} (DhRow's order).
   const std::vector<DhRow> table = {{0, 0, 0.35, 0},        {0.1, kPi / 2, 0, kPi / 2},
                                     {0.265, 0, 0, 0},       {0, kPi / 2, 0.27, 0},
                                     {0, -kPi / 2, 0, 0},    {0, kPi / 2, 0.075, 0}};

@@ -29,10 +29,11 @@ std::string Robot::linkLabel(int link) { return link == kBase ? "base" : std::to
 
 std::vector<std::pair<int, int>> Robot::nonAdjacentLinkPairs() const {
   std::vector<int> solid;
-  if (!base_shapes_.empty()) solid.push_back(kBase);
   for (int i = 0; i < numLinks(); ++i)
     if (!link_shapes_[i].empty()) solid.push_back(i);
   std::vector<std::pair<int, int>> pairs;
+  if (!base_shapes_.empty())
+    for (int link : solid) pairs.emplace_back(kBase, link);
   for (size_t a = 0; a < solid.size(); ++a)
     for (size_t b = a + 2; b < solid.size(); ++b) pairs.emplace_back(solid[a], solid[b]);
   return pairs;

@@ -40,7 +40,9 @@ class Robot {
   static std::string linkLabel(int link);
   // Links that may collide with each other: not adjacent along the chain (links without shapes are
   // skipped when deciding adjacency, so a spherical wrist's zero-length links do not hide a neighbour).
-  // The base comes first in the chain: (kBase, k) for every link k with shapes but the first.
+  // And (kBase, k) for every link k with shapes: the first of them meets the base at joint 1, but a
+  // tool offset from that joint may still reach the column (CollisionChecker drops the pair only
+  // where it touches in every sampled configuration, and then without a warning).
   std::vector<std::pair<int, int>> nonAdjacentLinkPairs() const;
 
   // World pose of every link frame; poses is resized to numLinks().

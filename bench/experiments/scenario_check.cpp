@@ -73,16 +73,23 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
     std::vector<Eigen::VectorXd> path = {q.start};
     path.insert(path.end(), q.witness.begin(), q.witness.end());
     path.push_back(q.goal);
-    bool witness_ok = true;
-    double min_clearance = 1e300;
-    for (size_t k = 0; k + 1 < path.size(); ++k) {
-      witness_ok &= checker.isValid(path[k + 1]) && certifier.isValid(path[k], path[k + 1]);
-      min_clearance = std::min(min_clearance, checker.clearance(path[k + 1]));
+    size_t failed = path.size();  // the first segment not certified
+    double min_clearance = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k + 1 < path.size() && failed == path.size(); ++k) {
+      if (checker.isValid(path[k + 1]) && certifier.isValid(path[k], path[k + 1]))
+        min_clearance = std::min(min_clearance, checker.clearance(path[k + 1]));
+      else
+        failed = k;
     }
-    ok &= witness_ok;
-    out << "query " << i << "    witness path of " << path.size() - 1 << " segments "
-        << (witness_ok ? "is certified collision-free" : "is NOT certified collision-free")
-        << ", waypoint clearance >= " << min_clearance << "\n";
+    out << "query " << i << "    witness path of " << path.size() - 1 << " segments ";
+    if (failed == path.size()) {
+      out << "is certified collision-free, waypoint clearance >= " << min_clearance << "\n";
+      continue;
+    }
+    ok = false;
+    const int hit = checker.check(path[failed + 1]);
+    out << "is NOT certified collision-free: segment " << failed << " "
+        << (hit == cspace::kFree ? "is not proven free" : "ends " + cspace::describeHit(env, hit)) << "\n";
   }
   return ok;
 }

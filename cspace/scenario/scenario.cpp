@@ -315,8 +315,8 @@ Scenario parseScenarioUnguarded(const std::string& yaml_text, const std::string&
   bool has_shape = false;
   for (int k = 0; k < s.robot->numLinks(); ++k) has_shape = has_shape || !s.robot->linkShapes(k).empty();
   if (!has_shape && !dynamic_cast<const robots::PointRobot*>(s.robot.get()))
-    r.fail("robot", "has no collision shape (every link segment has zero length and there is no tool): "
-                    "nothing of it could collide");
+    r.fail("robot", "has no moving collision shape (every link segment after joint 1 has zero length and "
+                    "there is no tool): nothing of it could collide");
   try {
     s.environment = std::make_shared<Environment>(
         root["obstacles"] ? readObstacles(r, root["obstacles"], *s.robot) : std::vector<Obstacle>{});

@@ -219,6 +219,29 @@ TEST(CollisionCheckerTest, DhBaseColumnMeetsFoldedLinksAsCapsuleDistancesSay) {
   }
 }
 
+TEST(CollisionCheckerTest, AToolOffsetFromJointOneMeetsTheBaseColumn) {
+  // A pan-tilt head on a 0.5 m post: two joints at the post's top, no link segment, only a tool box
+  // 0.2-0.5 m out along the flange's x. Tilted down (q2 = -pi/2) the box runs along the post. The
+  // tool's link is the first with a shape, yet it must be checked against the base.
+  robots::DhArmSpec spec;
+  spec.rows = {{0, 0, 0.5, 0}, {0, std::numbers::pi / 2, 0, 0}};
+  spec.lower = Eigen::Vector2d(-kPi, -kPi);
+  spec.upper = Eigen::Vector2d(kPi, kPi);
+  spec.link_radius = {0.05, 0.03};
+  spec.tool = {Shape::box(Eigen::Vector3d(0.3, 0.05, 0.05), Eigen::Isometry3d(Eigen::Translation3d(0.35, 0, 0)))};
+  const auto head = std::make_shared<robots::DhArm>(spec);
+  const CollisionChecker checker(head, environment({}));
+  EXPECT_EQ(checker.selfCollisionPairs(), (std::vector<std::pair<int, int>>{{robots::Robot::kBase, 1}}));
+  EXPECT_TRUE(checker.droppedSelfCollisionPairs().empty());
+  EXPECT_EQ(checker.check(Eigen::Vector2d(0, -kPi / 2)), kSelfCollisionHit);
+  EXPECT_EQ(checker.check(Eigen::Vector2d(0, 0)), kFree);
+  EXPECT_EQ(checker.check(Eigen::Vector2d(1, kPi / 2)), kFree);  // tilted up, away from the post
+  // The Panda's upper arm starts at joint 1's origin, on the column's cap: that pair is dropped
+  // without being listed as a surprise.
+  const CollisionChecker panda(std::make_shared<robots::DhArm>(robots::pandaSpec()), environment({}));
+  for (const auto& pair : panda.droppedSelfCollisionPairs()) EXPECT_NE(pair.first, robots::Robot::kBase);
+}
+
 TEST(CollisionCheckerTest, BroadphaseAgreesWithPerObstacleTests) {
   // 14 obstacles (> 8) go through the broadphase grid; hits() tests each obstacle on its own.
   std::mt19937_64 rng(3);

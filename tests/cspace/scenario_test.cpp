@@ -169,7 +169,12 @@ TEST(ScenarioTest, MalformedInputsNameFieldAndValue) {
   expectErrorNames("robot: {type: dh_arm, dh: [{a: 0, alpha: 0, d: 0}, {a: 0, alpha: pi/2, d: 0}], "
                    "link_radius: [0.1, 0.1], limits: {lower: [-3, -3], upper: [3, 3]}}\n"
                    "start: [-1, 0]\ngoal: [1, 0]\nresolution: 0.01\n",
-                   {"robot", "no collision shape"});
+                   {"robot", "no moving collision shape"});
+  // The same with only the base column (row 1) long: it never moves, so the robot still has none.
+  expectErrorNames("robot: {type: dh_arm, dh: [{a: 0.3, alpha: 0.5, d: 0.2}, {a: 0, alpha: pi/2, d: 0}], "
+                   "link_radius: [0.1, 0.1], limits: {lower: [-3, -3], upper: [3, 3]}}\n"
+                   "start: [-1, 0]\ngoal: [1, 0]\nresolution: 0.01\n",
+                   {"robot", "no moving collision shape", "after joint 1"});
 }
 
 TEST(ScenarioTest, WrongNodeKindsAreScenarioErrors) {

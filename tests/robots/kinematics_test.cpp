@@ -391,10 +391,10 @@ TEST(RobotTest, NonAdjacentPairsSkipLinksWithoutShapes) {
   const DhArm crs(crsF3Spec(6));
   EXPECT_TRUE(crs.linkShapes(3).empty());
   EXPECT_TRUE(crs.linkShapes(5).empty());
-  // The base column (kBase) comes before link 0 (the shoulder offset), so it faces links 1, 2 and 4.
+  // The base column (kBase) faces every link with shapes, link 0 (the shoulder offset) included.
   EXPECT_EQ(crs.nonAdjacentLinkPairs(), (std::vector<std::pair<int, int>>{
-                                            {Robot::kBase, 1}, {Robot::kBase, 2}, {Robot::kBase, 4},
-                                            {0, 2}, {0, 4}, {1, 4}}));
+                                            {Robot::kBase, 0}, {Robot::kBase, 1}, {Robot::kBase, 2},
+                                            {Robot::kBase, 4}, {0, 2}, {0, 4}, {1, 4}}));
   EXPECT_TRUE(arm.baseShapes().empty());
 }
 
