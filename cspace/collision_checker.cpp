@@ -245,6 +245,16 @@ bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) 
   return false;
 }
 
+std::optional<std::pair<int, int>> CollisionChecker::selfCollidingPair(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  robot_->checkConfiguration(q, "collision check");
+  checks_.fetch_add(1, std::memory_order_relaxed);
+  Workspace& ws = workspace();
+  placeRobot(ws, q);
+  for (const auto& pair : self_pairs_)
+    if (linksCollide(ws, pair.first, pair.second)) return pair;
+  return std::nullopt;
+}
+
 double CollisionChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   robot_->checkConfiguration(q, "clearance");
   distances_.fetch_add(1, std::memory_order_relaxed);

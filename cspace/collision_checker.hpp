@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "cspace/validity_checker.hpp"
@@ -41,6 +42,9 @@ class CollisionChecker final : public ValidityChecker {
     return checkImpl(q, true);
   }
   bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override;
+  // The first kept self-collision pair (selfCollisionPairs) that collides at q, for messages; nullopt
+  // when none does. Counts one collision check.
+  std::optional<std::pair<int, int>> selfCollidingPair(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   // The smallest distance between the robot and the real obstacles (0 in contact), to within 1e-6
   // of it from below (cspace/convex_distance.hpp; self-collision pairs not included); counts one
   // distance query.

@@ -16,6 +16,16 @@ std::string format(const Eigen::VectorXd& q) {
   return s.str() + "]";
 }
 
+// What q hits, naming the link pair of a self-collision.
+std::string describe(const cspace::CollisionChecker& checker, int hit, const Eigen::VectorXd& q) {
+  std::string what = cspace::describeHit(checker.environment(), hit);
+  if (hit != cspace::kSelfCollisionHit) return what;
+  if (const auto pair = checker.selfCollidingPair(q))
+    what += " (links " + robots::Robot::linkLabel(pair->first) + " and " +
+            robots::Robot::linkLabel(pair->second) + ")";
+  return what;
+}
+
 }  // namespace
 
 bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
@@ -65,7 +75,7 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
     for (const auto& [label, config] : {std::pair{"start", &q.start}, std::pair{"goal ", &q.goal}}) {
       const int hit = checker.check(*config);
       ok &= hit == cspace::kFree;
-      out << "query " << i << "    " << label << " " << format(*config) << "  " << cspace::describeHit(env, hit);
+      out << "query " << i << "    " << label << " " << format(*config) << "  " << describe(checker, hit, *config);
       if (hit == cspace::kFree) out << ", clearance " << std::setprecision(4) << checker.clearance(*config);
       out << "\n";
     }
@@ -89,7 +99,7 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
     ok = false;
     const int hit = checker.check(path[failed + 1]);
     out << "is NOT certified collision-free: segment " << failed << " "
-        << (hit == cspace::kFree ? "is not proven free" : "ends " + cspace::describeHit(env, hit)) << "\n";
+        << (hit == cspace::kFree ? "is not proven free" : "ends " + describe(checker, hit, path[failed + 1])) << "\n";
   }
   return ok;
 }
@@ -104,7 +114,7 @@ void requireValidConfigurations(const cspace::Scenario& scenario) {
       const std::string field =
           scenario.queries_listed ? "queries[" + std::to_string(i) + "]." + key : std::string(key);
       throw cspace::ScenarioError(scenario.path + ": field '" + field + "': configuration " + format(*config) +
-                                  " is " + cspace::describeHit(*scenario.environment, hit));
+                                  " is " + describe(checker, hit, *config));
     }
   }
   const auto& obstacles = scenario.environment->obstacles();
