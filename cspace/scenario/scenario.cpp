@@ -1,6 +1,7 @@
 #include "cspace/scenario/scenario.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -214,9 +215,20 @@ Eigen::VectorXd readConfiguration(const Reader& r, const YAML::Node& n, const st
                                   const robots::Robot& robot) {
   const Eigen::VectorXd q = r.vector(n, field, robot.dof(), -L::kMaxCoordinate, L::kMaxCoordinate);
   if (!robot.withinLimits(q)) {
+    // Named in the shortest form that reads back exactly: a value a rounding away from its limit must
+    // not print as inside it.
+    const auto exact = [](double x) {
+      char buffer[32];
+      return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, x).ptr);
+    };
     std::ostringstream v;
-    v << "[" << q.transpose() << "]";
-    r.fail(field, "configuration " + v.str() + " lies outside the joint limits");
+    for (int j = 0; j < q.size(); ++j)
+      if (q[j] < robot.lowerLimits()[j] || q[j] > robot.upperLimits()[j])
+        v << (v.tellp() > 0 ? ", " : "") << "joint " << j + 1 << " " << exact(q[j]) << " not in ["
+          << exact(robot.lowerLimits()[j]) << ", " << exact(robot.upperLimits()[j]) << "]";
+    std::ostringstream all;
+    all << "[" << q.transpose() << "]";
+    r.fail(field, "configuration " + all.str() + " lies outside the joint limits (" + v.str() + ")");
   }
   return q;
 }

@@ -154,6 +154,9 @@ TEST(ScenarioTest, MalformedInputsNameFieldAndValue) {
   expectErrorNames(pointScenarioWith("start: [1, 5]", "start: [1, .nan]"), {"start[1]", ".nan"});
   expectErrorNames(pointScenarioWith("goal: [9, 5]", "goal: [9, 5, 1]"), {"goal", "expected 2 numbers", "[9, 5, 1]"});
   expectErrorNames(pointScenarioWith("start: [1, 5]", "start: [11, 5]"), {"start", "11", "outside the joint limits"});
+  // A value a rounding away from its limit is named with every digit, and the joint with it.
+  expectErrorNames(pointScenarioWith("start: [1, 5]", "start: [1, 10.0000000001]"),
+                   {"start", "joint 2 10.0000000001 not in [0, 10]"});
   expectErrorNames(pointScenarioWith("witness: [[2.5, 6.15], [7.5, 6.15]]", "witness: [[2.5, 6.15], [-1, 6.15]]"),
                    {"witness[1]", "-1"});
   expectErrorNames(pointScenarioWith("resolution: 0.05", "resolution: 0.05\nresolutoin: 0.1"), {"resolutoin", "unknown field"});
