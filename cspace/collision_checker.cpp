@@ -200,6 +200,12 @@ bool CollisionChecker::linksCollide(Workspace& ws, int a, int b) const {
   return false;
 }
 
+const std::pair<int, int>* CollisionChecker::collidingSelfPair(Workspace& ws) const {
+  for (const auto& pair : self_pairs_)
+    if (linksCollide(ws, pair.first, pair.second)) return &pair;
+  return nullptr;
+}
+
 int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const {
   // A wrong size would read past the limit vectors and the FK loops; NaN is left to withinLimits.
   if (q.size() != robot_->dof()) robot_->checkConfiguration(q, "collision check");
@@ -222,9 +228,7 @@ int CollisionChecker::checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool
     }
   }
   if (lowest != std::numeric_limits<int>::max()) return lowest;
-  for (const auto& [a, b] : self_pairs_)
-    if (linksCollide(ws, a, b)) return kSelfCollisionHit;
-  return kFree;
+  return collidingSelfPair(ws) ? kSelfCollisionHit : kFree;
 }
 
 bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const {
@@ -233,11 +237,7 @@ bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) 
   if (!robot_->withinLimits(q)) return false;
   Workspace& ws = workspace();
   placeRobot(ws, q);
-  if (id == kSelfCollisionHit) {
-    for (const auto& [a, b] : self_pairs_)
-      if (linksCollide(ws, a, b)) return true;
-    return false;
-  }
+  if (id == kSelfCollisionHit) return collidingSelfPair(ws) != nullptr;
   Placed& obstacle = ws.obstacle_parts.at(id - 1);
   for (int i = 0; i < robot_->numLinks(); ++i)
     for (Placed& part : ws.parts[i])
@@ -250,8 +250,7 @@ std::optional<std::pair<int, int>> CollisionChecker::selfCollidingPair(const Eig
   checks_.fetch_add(1, std::memory_order_relaxed);
   Workspace& ws = workspace();
   placeRobot(ws, q);
-  for (const auto& pair : self_pairs_)
-    if (linksCollide(ws, pair.first, pair.second)) return pair;
+  if (const auto* pair = collidingSelfPair(ws)) return *pair;
   return std::nullopt;
 }
 

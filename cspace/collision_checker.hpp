@@ -77,6 +77,8 @@ class CollisionChecker final : public ValidityChecker {
   int checkImpl(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const;
   void placeRobot(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& q) const;
   bool linksCollide(Workspace& ws, int a, int b) const;
+  // The first kept self-collision pair that collides with the robot placed in `ws`; null when none.
+  const std::pair<int, int>* collidingSelfPair(Workspace& ws) const;
   std::unique_ptr<Workspace> makeWorkspace() const;
 
   std::shared_ptr<const robots::Robot> robot_;

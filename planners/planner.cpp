@@ -142,7 +142,7 @@ PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Term
     straight_motion_blocked_ = triesStraightMotionFirst() && !straightMotionAnswers(context_, q, result);
     // One motion check is not interrupted (at most cspace::kMaxSegmentChecks configurations): a limit
     // it used up ends the run here, saying so, and a path it found stands.
-    if (!result.solved() && straight_motion_blocked_ && stop()) {
+    if (straight_motion_blocked_ && stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached while checking the straight start-goal motion";
     } else if (!result.solved()) {

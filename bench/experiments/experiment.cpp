@@ -14,6 +14,7 @@
 #include "bench/experiments/atomic_file.hpp"
 #include "bench/experiments/output_text.hpp"
 #include "bench/experiments/run_records.hpp"
+#include "bench/experiments/scenario_check.hpp"
 #include "bench/experiments/svg_writer.hpp"
 #include "bench/experiments/svpp_svg.hpp"
 #include "cspace/certified_motion_validator.hpp"
@@ -213,8 +214,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
                                        std::ostream& log) {
   const World world(scenario, options, log);
   for (const auto& [a, b] : world.checker.droppedSelfCollisionPairs())
-    log << "svmp-plan: links " << robots::Robot::linkLabel(a) << " and " << robots::Robot::linkLabel(b)
-        << " touch in every sampled configuration and are not checked against each other (--check)\n";
+    log << "svmp-plan: " << droppedPairWarning(a, b) << " (--check)\n";
   // Every planner is built first: a bad parameter stops the run before any work.
   std::vector<std::map<std::string, std::string>> parameters;
   auto planners = makePlanners(scenario, options, world.context, &parameters);

@@ -28,6 +28,11 @@ std::string describe(const cspace::CollisionChecker& checker, int hit, const Eig
 
 }  // namespace
 
+std::string droppedPairWarning(int a, int b) {
+  return "links " + robots::Robot::linkLabel(a) + " and " + robots::Robot::linkLabel(b) +
+         " touch in every sampled configuration and are not checked against each other";
+}
+
 bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
   const auto& robot = *scenario.robot;
   const auto& env = *scenario.environment;
@@ -39,9 +44,8 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
       << " links, " << robot.numControlPoints() << " control points, "
       << checker.selfCollisionPairs().size() << " self-collision pairs\n";
   for (const auto& [a, b] : checker.droppedSelfCollisionPairs())
-    out << "warning    links " << robots::Robot::linkLabel(a) << " and " << robots::Robot::linkLabel(b)
-        << " touch in every sampled configuration and are not checked against each other (joined by "
-        << "construction, or overlapping wherever the joint limits allow)\n";
+    out << "warning    " << droppedPairWarning(a, b)
+        << " (joined by construction, or overlapping wherever the joint limits allow)\n";
   out << "limits     lower " << format(robot.lowerLimits()) << "\n           upper "
       << format(robot.upperLimits()) << "\n";
   out << "metric     weights " << format(scenario.metric_weights) << ", resolution "

@@ -2,10 +2,14 @@
 // `svmp-plan --check`: a scenario's summary (robot, dof, obstacles, each query's start and goal with
 // their collision status and clearance, and the witness path when the file gives one).
 #include <ostream>
+#include <string>
 
 #include "cspace/scenario/scenario.hpp"
 
 namespace svmp::experiments {
+
+// What a run and --check say of a self-collision pair the checker left out (droppedSelfCollisionPairs).
+std::string droppedPairWarning(int a, int b);
 
 // Prints the summary; returns false when a start, goal or witness segment is in collision.
 bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out);
