@@ -7,10 +7,30 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <unistd.h>
+
 namespace svmp::experiments {
+namespace {
+
+// A name beside `file` that no other process writes (shards of one sweep may share an output name).
+std::string temporaryBeside(const std::string& file) { return file + ".tmp." + std::to_string(::getpid()); }
+
+// Creates and removes `probe`; throws naming `flag` and `what` when it cannot be created.
+void probeWrite(const std::string& flag, const std::string& what, const std::string& probe) {
+  errno = 0;
+  std::ofstream out(probe, std::ios::binary | std::ios::trunc);
+  if (!out) {
+    const std::string reason = errno ? std::strerror(errno) : "cannot open";
+    throw std::runtime_error("flag " + flag + ": cannot write " + what + ": " + reason);
+  }
+  out.close();
+  std::remove(probe.c_str());
+}
+
+}  // namespace
 
 void writeFileAtomically(const std::string& file, const std::string& text) {
-  const std::string tmp = file + ".tmp";
+  const std::string tmp = temporaryBeside(file);
   errno = 0;
   std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
   if (out) out << text;
@@ -28,21 +48,14 @@ void checkWritable(const std::string& flag, const std::string& file) {
   // Its folder is made, as --svg's is (the docs write into results/ subfolders).
   if (const std::filesystem::path parent = std::filesystem::path(file).parent_path(); !parent.empty())
     makeDirectory(flag, parent.string());
-  const std::string probe = file + ".tmp";
-  errno = 0;
-  std::ofstream out(probe, std::ios::binary | std::ios::trunc);
-  if (!out) {
-    const std::string reason = errno ? std::strerror(errno) : "cannot open";
-    throw std::runtime_error("flag " + flag + ": cannot write '" + file + "': " + reason);
-  }
-  out.close();
-  std::remove(probe.c_str());
+  probeWrite(flag, "'" + file + "'", temporaryBeside(file));
 }
 
 void makeDirectory(const std::string& flag, const std::string& dir) {
   std::error_code error;
   if (!std::filesystem::create_directories(dir, error) && error)
     throw std::runtime_error("flag " + flag + ": cannot create directory '" + dir + "': " + error.message());
+  probeWrite(flag, "into directory '" + dir + "'", (std::filesystem::path(dir) / temporaryBeside(".svmp-probe")).string());
 }
 
 }  // namespace svmp::experiments

@@ -1,5 +1,5 @@
 #pragma once
-// Output files are written whole or not at all: the text goes to FILE.tmp, which is renamed over FILE
+// Output files are written whole or not at all: the text goes to FILE.tmp.PID, which is renamed over FILE
 // only when every byte was written. Throws std::runtime_error naming the file and the OS reason.
 #include <string>
 
@@ -11,8 +11,8 @@ void writeFileAtomically(const std::string& file, const std::string& text);
 // when `file` could not be created there; run before the work so a bad path fails at once, not after
 // the whole run.
 void checkWritable(const std::string& flag, const std::string& file);
-// Makes the folder `dir` (with its parents) for `flag`; throws std::runtime_error naming both and the
-// OS reason when it cannot.
+// Makes the folder `dir` (with its parents) for `flag` and tries a file in it; throws
+// std::runtime_error naming both and the OS reason when either fails.
 void makeDirectory(const std::string& flag, const std::string& dir);
 
 }  // namespace svmp::experiments

@@ -26,6 +26,7 @@
 #include "planners/planner_registry.hpp"
 #include "planners/svpp_smoothing.hpp"
 #include "planners/verify_repair.hpp"
+#include "robots/point_robot.hpp"
 #include "svm/solver_workspace.hpp"
 
 namespace svmp::experiments {
@@ -67,16 +68,51 @@ void measurePath(const cspace::Scenario& scenario, const cspace::ConfigurationSp
   record.min_clearance = planners::minClearance(path, checker, space, scenario.resolution / 4);
 }
 
+// The scenario's parameters of `name` (a planner, a proxy checker, svpp's smoothing) with --set's.
+cspace::ParameterSet parametersFor(const std::string& name, const cspace::Scenario& scenario,
+                                   const DriverOptions& options) {
+  cspace::ParameterSet params = scenario.paramsFor(name);
+  for (const auto& [key, value] : options.overrides)
+    if (key.rfind(name + ".", 0) == 0) params.set(key.substr(name.size() + 1), value, "flag --set " + key + "=" + value);
+  return params;
+}
+
+// Every `planners:` section names a planner or a proxy checker: a typo (`prmm:`) would otherwise leave
+// the planner on its defaults without a word.
+void checkPlannerSections(const cspace::Scenario& scenario) {
+  const std::vector<std::string> planners = planners::plannerNames();
+  const bool has_ompl = std::find(planners.begin(), planners.end(), "ompl-prm") != planners.end();
+  for (const auto& [name, params] : scenario.planner_params) {
+    if (std::find(planners.begin(), planners.end(), name) != planners.end() ||
+        (isCheckerName(name) && name != "fcl") || (!has_ompl && name.rfind("ompl-", 0) == 0))
+      continue;
+    std::string known;
+    for (const auto& n : planners) known += n + ", ";
+    throw cspace::ScenarioError(scenario.path + ": field 'planners." + name + "': unknown planner (known: " + known +
+                                "fastron-fk, fastron-rbf)");
+  }
+}
+
+// --simplify svpp: the smoothing's options, from the scenario's svpp section and --set svpp.*.
+planners::SvppOptions svmSmoothingOptions(const cspace::Scenario& scenario, const DriverOptions& options) {
+  const cspace::ParameterSet params = parametersFor("svpp", scenario, options);
+  const auto svpp = planners::SvppOptions::fromParameters(params);
+  params.requireAllUsed();
+  if (const std::string why = svpp.validate(); !why.empty())
+    throw cspace::ScenarioError(scenario.path + ": --simplify svpp: svpp parameters: " + why);
+  if (!dynamic_cast<const robots::PointRobot*>(scenario.robot.get()))
+    throw cspace::ScenarioError(scenario.path + ": --simplify svpp smooths the paths of point robots in 2-D and 3-D; "
+                                "the robot is '" + scenario.robot->name() + "' (use --simplify)");
+  return svpp;
+}
+
 // With --checker fastron-*: the proxy (trained once, on the scenario's query end points too) and the
 // thesis' sampled validator on it; World's repairer verifies and repairs on the exact checker (Das &
 // Yip 2019, sec. IV-B).
 struct Proxy {
   Proxy(const cspace::Scenario& scenario, const DriverOptions& options, const planners::PlanningContext& exact,
         std::ostream& log) {
-    cspace::ParameterSet params = scenario.paramsFor(options.checker);
-    for (const auto& [key, value] : options.overrides)
-      if (key.rfind(options.checker + ".", 0) == 0)
-        params.set(key.substr(options.checker.size() + 1), value, "flag --set " + key + "=" + value);
+    const cspace::ParameterSet params = parametersFor(options.checker, scenario, options);
     auto o = cspace::FastronCheckerOptions::fromParameters(options.checker, params);
     params.requireAllUsed();
     o.threads = options.threads;
@@ -124,11 +160,10 @@ struct World : planners::ExactSetup {
 std::vector<std::unique_ptr<planners::Planner>> makePlanners(
     const cspace::Scenario& scenario, const DriverOptions& options, const planners::PlanningContext& context,
     std::vector<std::map<std::string, std::string>>* parameters = nullptr) {
+  checkPlannerSections(scenario);
   std::vector<std::unique_ptr<planners::Planner>> planners;
   for (const auto& name : options.planners) {
-    cspace::ParameterSet params = scenario.paramsFor(name);
-    for (const auto& [key, value] : options.overrides)
-      if (key.rfind(name + ".", 0) == 0) params.set(key.substr(name.size() + 1), value, "flag --set " + key + "=" + value);
+    const cspace::ParameterSet params = parametersFor(name, scenario, options);
     planners.push_back(planners::makePlanner(name, context, params));
     if (!parameters) continue;
     std::map<std::string, std::string>& values = parameters->emplace_back();
@@ -138,6 +173,7 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
   for (const auto& [key, value] : options.overrides) {
     const std::string planner = key.substr(0, key.find('.'));
     if (planner == options.checker) continue;  // the proxy checker's own parameters
+    if (planner == "svpp" && options.simplify_svm) continue;  // the smoothing's
     if (std::find(options.planners.begin(), options.planners.end(), planner) == options.planners.end())
       throw cspace::ScenarioError("flag --set " + key + "=" + value + ": planner '" + planner +
                                   "' is not among --planners");
@@ -208,6 +244,7 @@ void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& opt
   std::ostringstream quiet;
   const World world(scenario, options, quiet);
   makePlanners(scenario, options, world.context);
+  if (options.simplify_svm) svmSmoothingOptions(scenario, options);
 }
 
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
@@ -218,6 +255,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
   // Every planner is built first: a bad parameter stops the run before any work.
   std::vector<std::map<std::string, std::string>> parameters;
   auto planners = makePlanners(scenario, options, world.context, &parameters);
+  const auto smoothing_options = options.simplify_svm ? svmSmoothingOptions(scenario, options) : planners::SvppOptions();
   std::vector<PlannerRuns> results;
   for (size_t p = 0; p < planners.size(); ++p) results.push_back({options.planners[p], {}, parameters[p]});
   const auto& queries = scenario.queries;
@@ -272,9 +310,8 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         if (options.simplify && record.result.solved()) {
           const auto t1 = Clock::now();
           if (options.simplify_svm) {
-            const auto svpp = planners::SvppOptions::fromParameters(scenario.paramsFor("svpp"));
             auto smoothed = planners::smoothPathBySvm(record.result.path, world.checker, world.certifier,
-                                                      world.space, svpp, &smoothing);
+                                                      world.space, smoothing_options, &smoothing);
             if (!smoothed.smoothed)
               log << "  " << runs.planner << " seed " << seed << ": path kept (" << smoothed.why << ")\n";
             record.result.path = std::move(smoothed.path);

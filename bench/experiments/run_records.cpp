@@ -10,6 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bench/experiments/driver_options.hpp"
+#include "planners/planner_registry.hpp"
+
 namespace svmp::experiments {
 namespace {
 
@@ -33,6 +36,10 @@ T get(const json& obj, const std::string& key, const std::string& where) {
   if (it == obj.end()) throw std::runtime_error(where + ": field '" + key + "' missing");
   if constexpr (std::is_same_v<T, double>)
     if (it->is_null()) return std::numeric_limits<double>::quiet_NaN();
+  // A count read from a negative number would wrap to 1.8e19 without a word.
+  if constexpr (std::is_unsigned_v<T> && !std::is_same_v<T, bool>)
+    if (!it->is_number_unsigned())
+      throw std::runtime_error(where + ": field '" + key + "' must be a non-negative integer, got " + it->dump());
   try {
     return it->get<T>();
   } catch (const json::exception&) {
@@ -255,6 +262,8 @@ MergedShards mergeShards(const std::vector<std::string>& files, const std::strin
     lowest = lo, highest = hi;
   }
 
+  if (results.empty()) throw std::runtime_error("flag --merge: the shards hold no planner's runs");
+
   MergedShards merged;
   const std::string file = scenario_file.empty() ? get<std::string>(first, "file", files.front()) : scenario_file;
   merged.scenario = cspace::loadScenario(file);
@@ -272,12 +281,38 @@ MergedShards mergeShards(const std::vector<std::string>& files, const std::strin
   o.queries = get<int>(first, "random_queries", files.front());
   o.checker = get<std::string>(first, "checker", files.front());
   o.simplify = get<bool>(first, "simplified", files.front());
-  o.simplify_svm = get<std::string>(first, "simplifier", files.front()) == "svpp";
+  const std::string simplifier = get<std::string>(first, "simplifier", files.front());
+  o.simplify_svm = simplifier == "svpp";
   o.overrides = shards.overrides;
+  if (o.threads < 1 || !(o.time_limit >= 0) || o.queries < 0 || !isCheckerName(o.checker) ||
+      (simplifier != "none" && simplifier != "shortcut" && simplifier != "svpp") ||
+      o.simplify != (simplifier != "none"))
+    throw std::runtime_error(files.front() + ": not svmp-plan's options: threads " + std::to_string(o.threads) +
+                             ", time_limit " + first["time_limit"].dump() + ", random_queries " +
+                             std::to_string(o.queries) + ", checker '" + o.checker + "', simplifier '" + simplifier + "'");
+  const std::vector<std::string> known = planners::plannerNames();
+  for (const std::string& planner : o.planners)
+    if (std::find(known.begin(), known.end(), planner) == known.end())
+      throw std::runtime_error("flag --merge: planner '" + planner + "' is not one of this build's planners");
   if (o.queries > 0) merged.scenario.queries = randomQueries(merged.scenario, o.queries, o.seed);
   if (merged.scenario.queries.size() != get<size_t>(first, "queries", files.front()))
     throw std::runtime_error(file + ": has " + std::to_string(merged.scenario.queries.size()) +
                              " queries, the shards " + first["queries"].dump());
+  // Every planner: each seed of the range answered every query once (the table sums a run's queries).
+  const size_t queries = merged.scenario.queries.size();
+  for (const PlannerRuns& runs : results) {
+    for (size_t k = 0; k < runs.runs.size(); ++k) {
+      const RunRecord& r = runs.runs[k];
+      if (r.query < 0 || static_cast<size_t>(r.query) >= queries)
+        throw std::runtime_error("flag --merge: planner '" + runs.planner + "', seed " + std::to_string(r.seed) +
+                                 ": query " + std::to_string(r.query) + " is not one of the scenario's " +
+                                 std::to_string(queries) + " queries");
+    }
+    if (runs.runs.size() != static_cast<size_t>(o.runs) * queries)
+      throw std::runtime_error("flag --merge: planner '" + runs.planner + "' has " + std::to_string(runs.runs.size()) +
+                               " records, " + std::to_string(o.runs) + " seeds x " + std::to_string(queries) +
+                               " queries make " + std::to_string(static_cast<size_t>(o.runs) * queries));
+  }
   merged.results = std::move(results);
   return merged;
 }

@@ -57,6 +57,14 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
         << format(o.shape.pose.translation()) << (o.is_virtual ? " virtual" : "")
         << (o.weight != 1.0 ? " weight " + std::to_string(o.weight) : "") << "\n";
   }
+  bool ok = true;
+  for (const auto& o : env.obstacles()) {
+    if (!o.root_sample) continue;
+    const bool hits = checker.hits(*o.root_sample, o.id);
+    ok &= hits;
+    out << (hits ? "sample     " : "error      sample ") << format(*o.root_sample) << (hits ? " hits" : " does NOT hit")
+        << " obstacle '" << o.name << "'" << (hits ? "" : " (planning refuses the file)") << "\n";
+  }
   // A sampled motion check looks every `resolution`; between two looks the robot's points move by up
   // to `step`, so an obstacle thinner than that less the robot's own thinnest part can fall between
   // them. Certification still rejects such a path; the warning says why planners may then fail.
@@ -72,7 +80,6 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
         << ", so sampled motion checks may step through it (paths through it fail certification);"
         << " a resolution of at most " << scenario.resolution * width / step << " does not\n";
   }
-  bool ok = true;
   const cspace::CertifiedMotionValidator certifier(checker, space, scenario.resolution);
   for (size_t i = 0; i < scenario.queries.size(); ++i) {
     const auto& q = scenario.queries[i];

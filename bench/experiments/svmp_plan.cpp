@@ -4,6 +4,7 @@
 // Bad input: one clear error, exit status 2.
 #include <chrono>
 #include <iostream>
+#include <new>
 
 #include "bench/experiments/atomic_file.hpp"
 #include "bench/experiments/driver_options.hpp"
@@ -84,6 +85,10 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const std::length_error& e) {  // a segment the validator refuses to count (never "free")
     std::cerr << "svmp-plan: " << options.scenario << ": " << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {  // the input asked for more memory than the machine has
+    std::cerr << "svmp-plan: " << options.scenario << ": out of memory (the scenario or the flags ask for more "
+              << "than this machine can hold; no output was written)\n";
     return 2;
   }
 }

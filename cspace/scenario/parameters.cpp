@@ -2,8 +2,9 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
+
+#include "cspace/scenario/yaml_reader.hpp"
 
 namespace svmp::cspace {
 
@@ -22,9 +23,8 @@ double ParameterSet::getDouble(const std::string& key, double fallback, double m
   declared_[key] = {ParameterDeclaration::Kind::kDouble, parameterText(fallback), parameterText(min) + ":" + parameterText(max)};
   auto it = values_.find(key);
   if (it == values_.end()) return fallback;
-  char* end = nullptr;
-  const double v = std::strtod(it->second.c_str(), &end);
-  if (it->second.empty() || *end != '\0' || !std::isfinite(v))
+  double v = 0;  // the scenario's own number syntax (pi/2 included; no hexadecimal, no blanks)
+  if (!scenario_yaml::parseNumber(it->second, v) || !std::isfinite(v))
     throw ScenarioError(field(key) + ": expected a finite number, got '" + it->second + "'");
   if (v < min || v > max) {
     std::ostringstream err;
@@ -40,9 +40,11 @@ long ParameterSet::getInt(const std::string& key, long fallback, long min, long 
                     std::to_string(min) + ":" + std::to_string(max)};
   auto it = values_.find(key);
   if (it == values_.end()) return fallback;
-  char* end = nullptr;
-  const long v = std::strtol(it->second.c_str(), &end, 10);
-  if (it->second.empty() || *end != '\0')
+  const std::string& s = it->second;
+  const char* begin = s.data() + (s.size() > 1 && s[0] == '+' && s[1] != '-' ? 1 : 0);
+  long v = 0;
+  const auto [ptr, ec] = std::from_chars(begin, s.data() + s.size(), v);
+  if (s.empty() || ptr != s.data() + s.size() || ec != std::errc())
     throw ScenarioError(field(key) + ": expected an integer, got '" + it->second + "'");
   if (v < min || v > max)
     throw ScenarioError(field(key) + ": must lie in [" + std::to_string(min) + ", " +

@@ -191,9 +191,10 @@ std::shared_ptr<const robots::Robot> readRobot(const Reader& r, const YAML::Node
   if (n["flange"]) {
     const YAML::Node f = n["flange"];
     r.checkKeys(f, "robot.flange", {"a", "alpha", "d"});
-    spec.flange.a = f["a"] ? dhLength(r, f["a"], "robot.flange.a") : 0;
-    spec.flange.alpha = f["alpha"] ? angle(r, f["alpha"], "robot.flange.alpha") : 0;
-    spec.flange.d = f["d"] ? dhLength(r, f["d"], "robot.flange.d") : 0;
+    // A key not given keeps the preset's value (zero for a dh table).
+    if (f["a"]) spec.flange.a = dhLength(r, f["a"], "robot.flange.a");
+    if (f["alpha"]) spec.flange.alpha = angle(r, f["alpha"], "robot.flange.alpha");
+    if (f["d"]) spec.flange.d = dhLength(r, f["d"], "robot.flange.d");
   }
   if (n["base"]) {
     r.checkKeys(n["base"], "robot.base", kPoseKeys);
@@ -233,6 +234,31 @@ Eigen::VectorXd readConfiguration(const Reader& r, const YAML::Node& n, const st
   return q;
 }
 
+// Half the height a shape spans in z about its centre: exact for every kind and rotation.
+double zHalfExtent(const robots::Shape& s) {
+  const Eigen::Matrix3d& rotation = s.pose.linear();
+  const double axis_z = std::abs(rotation(2, 2));  // world-z part of the shape's local z axis
+  switch (s.kind) {
+    case robots::ShapeKind::kBox:
+      return 0.5 * (std::abs(rotation(2, 0)) * s.dims.x() + std::abs(rotation(2, 1)) * s.dims.y() +
+                    axis_z * s.dims.z());
+    case robots::ShapeKind::kSphere: return s.dims.x();
+    case robots::ShapeKind::kCylinder:
+      return 0.5 * axis_z * s.dims.y() + s.dims.x() * std::sqrt(std::max(0.0, 1 - axis_z * axis_z));
+    case robots::ShapeKind::kCapsule: return 0.5 * axis_z * s.dims.y() + s.dims.x();
+  }
+  return 0;
+}
+
+// How far from z = 0 a planar robot reaches: its link frames stay in the plane, its shapes have height.
+double planarHalfHeight(const robots::Robot& robot) {
+  double half = 0;
+  for (int k = 0; k < robot.numLinks(); ++k)
+    for (const auto& shape : robot.linkShapes(k))
+      half = std::max(half, std::abs(shape.pose.translation().z()) + zHalfExtent(shape));
+  return half;
+}
+
 std::vector<Obstacle> readObstacles(const Reader& r, const YAML::Node& list, const robots::Robot& robot) {
   r.requireList(list, "obstacles", L::kMaxObstacles, "obstacles");
   std::vector<Obstacle> obstacles;
@@ -247,9 +273,13 @@ std::vector<Obstacle> readObstacles(const Reader& r, const YAML::Node& list, con
     if (const auto [it, fresh] = names.emplace(o.name, i); !fresh)
       r.fail(f + ".name", "duplicate obstacle name '" + o.name + "' (also " + idx("obstacles", it->second) + ")");
     o.shape = readShape(r, o_node, f);
-    if (robot.workspaceDim() == 2 && std::abs(o.shape.pose.translation().z()) > 0 &&
-        o.shape.kind == robots::ShapeKind::kBox && 0.5 * o.shape.dims.z() < std::abs(o.shape.pose.translation().z()))
-      r.fail(f + ".position", "a planar robot moves in z = 0; this obstacle does not reach it");
+    if (robot.workspaceDim() == 2) {
+      const double z = o.shape.pose.translation().z(), half = zHalfExtent(o.shape), robot_half = planarHalfHeight(robot);
+      if (std::abs(z) > half + robot_half)
+        r.fail(f + ".position", "a planar robot moves in z = 0 (the robot spans z in [" + num(-robot_half) + ", " +
+                                    num(robot_half) + "]); this obstacle spans z in [" + num(z - half) + ", " +
+                                    num(z + half) + "] and does not reach it");
+    }
     o.is_virtual = o_node["virtual"] ? r.boolean(o_node["virtual"], f + ".virtual") : false;
     o.weight = o_node["weight"] ? r.positiveAtMost(o_node["weight"], f + ".weight", L::kMaxWeight) : 1.0;
     if (o_node["sample"]) o.root_sample = readConfiguration(r, o_node["sample"], f + ".sample", robot);

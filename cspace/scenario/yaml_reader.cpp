@@ -65,6 +65,8 @@ size_t editDistance(const std::string& a, const std::string& b) {
 struct TooManyNodes {};
 
 // Streaming pass over the events: counts nodes and documents, remembers the last scalar.
+// An alias counts as the nodes of what it names: ten thousand aliases of one large list would
+// otherwise pass as ten thousand nodes and the scenario reader would copy the list into each.
 class Survey : public YAML::EventHandler {
  public:
   long nodes = 0;
@@ -77,27 +79,71 @@ class Survey : public YAML::EventHandler {
     if (++documents == 2) second_document = mark;
   }
   void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override { count(); }
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override { count(); }
-  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override {
-    count();
+  void OnNull(const YAML::Mark&, YAML::anchor_t anchor) override { leaf(anchor); }
+  void OnAlias(const YAML::Mark&, YAML::anchor_t anchor) override {
+    const auto it = anchored_.find(anchor);
+    count(it != anchored_.end() ? it->second : 1);
+  }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, const std::string&) override {
+    leaf(anchor);
     have_scalar = true;
     last_scalar = mark;
   }
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
-    count();
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t anchor,
+                       YAML::EmitterStyle::value) override {
+    open(anchor);
   }
-  void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
-    count();
+  void OnSequenceEnd() override { close(); }
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+    open(anchor);
   }
-  void OnMapEnd() override {}
+  void OnMapEnd() override { close(); }
 
  private:
-  void count() {
-    if (++nodes > Limits::kMaxYamlNodes) throw TooManyNodes{};
+  std::map<YAML::anchor_t, long> anchored_;                // anchor -> nodes it names, aliases expanded
+  std::vector<std::pair<YAML::anchor_t, long>> open_;      // open collections: anchor, nodes before them
+
+  void count(long n) {
+    nodes += n;
+    if (nodes > Limits::kMaxYamlNodes) throw TooManyNodes{};
+  }
+  void leaf(YAML::anchor_t anchor) {
+    count(1);
+    if (anchor != YAML::NullAnchor) anchored_[anchor] = 1;
+  }
+  void open(YAML::anchor_t anchor) {
+    open_.emplace_back(anchor, nodes);
+    count(1);
+  }
+  void close() {
+    const auto [anchor, before] = open_.back();
+    open_.pop_back();
+    if (anchor != YAML::NullAnchor) anchored_[anchor] = nodes - before;
   }
 };
+
+// The byte where `text` stops being UTF-8 (overlong forms, surrogates and code points past U+10FFFF
+// included), or npos. Names are copied into the JSON outputs, which must stay valid JSON.
+size_t invalidUtf8(const std::string& text) {
+  const auto* t = reinterpret_cast<const unsigned char*>(text.data());
+  for (size_t i = 0; i < text.size();) {
+    const unsigned c = t[i];
+    size_t n = 0;
+    unsigned lo = 0x80, hi = 0xBF;  // the allowed range of the second byte
+    if (c < 0x80) n = 0;
+    else if (c >= 0xC2 && c <= 0xDF) n = 1;
+    else if (c >= 0xE0 && c <= 0xEF) n = 2, lo = c == 0xE0 ? 0xA0 : 0x80, hi = c == 0xED ? 0x9F : 0xBF;
+    else if (c >= 0xF0 && c <= 0xF4) n = 3, lo = c == 0xF0 ? 0x90 : 0x80, hi = c == 0xF4 ? 0x8F : 0xBF;
+    else return i;
+    if (i + n >= text.size() + (n == 0 ? 1 : 0) && n > 0) return i;
+    for (size_t k = 1; k <= n; ++k) {
+      const unsigned b = t[i + k];
+      if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return i;
+    }
+    i += n + 1;
+  }
+  return std::string::npos;
+}
 
 std::string lineColumn(const std::string& text, size_t pos) {
   pos = std::min(pos, text.size());
@@ -164,7 +210,8 @@ bool parseNumber(const std::string& s, double& v) {
   if (*p != '/') return false;
   double d = 0;
   const char* q = readDouble(p + 1, end, d);
-  if (q != end) return false;
+  // pi/inf or pi/1e400 must not read as 0 (readDouble gives inf out of range); pi/0 is no number either.
+  if (q != end || !std::isfinite(d) || d == 0) return false;
   v /= d;
   return true;
 }
@@ -197,6 +244,9 @@ YAML::Node loadSingleDocument(const std::string& text, const std::string& source
   if (const size_t nul = text.find('\0'); nul != std::string::npos)
     throw ScenarioError(source + ": a NUL byte at byte " + std::to_string(nul) +
                         " (" + lineColumn(text, nul) + "): not UTF-8 YAML text");
+  if (const size_t bad = invalidUtf8(text); bad != std::string::npos)
+    throw ScenarioError(source + ": a byte that is not UTF-8 at byte " + std::to_string(bad) + " (" +
+                        lineColumn(text, bad) + "): scenario files are UTF-8 text");
   Survey survey;
   try {
     std::istringstream in(text);
@@ -205,7 +255,8 @@ YAML::Node loadSingleDocument(const std::string& text, const std::string& source
     }
   } catch (const TooManyNodes&) {
     throw ScenarioError(source + ": more than " + std::to_string(Limits::kMaxYamlNodes) +
-                        " YAML nodes (values, lists and mappings): the scenario limit");
+                        " YAML nodes (values, lists and mappings, each alias counting as what it names): "
+                        "the scenario limit");
   } catch (const YAML::Exception& e) {
     syntaxError(source, e);
   }

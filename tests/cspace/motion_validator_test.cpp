@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <queue>
 #include <random>
+#include <vector>
 
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
@@ -113,6 +115,70 @@ TEST(MotionValidatorTest, WallThinnerThanResolutionCanBeMissedThickerIsAlwaysCau
     const DiscreteMotionValidator validator(world.checker, world.space, 0.25);
     EXPECT_FALSE(validator.isValid(Eigen::Vector2d(1, 5), Eigen::Vector2d(9, 5)));
   }
+}
+
+// Records the x coordinate of every configuration it is asked about.
+class RecordingChecker final : public ValidityChecker {
+ public:
+  explicit RecordingChecker(const ValidityChecker& inner) : inner_(inner) {}
+  const robots::Robot& robot() const override { return inner_.robot(); }
+  const Environment& environment() const override { return inner_.environment(); }
+  int check(const Eigen::Ref<const Eigen::VectorXd>& q) const override {
+    asked.push_back(q[0]);
+    return inner_.check(q);
+  }
+  int checkIncludingVirtual(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return inner_.checkIncludingVirtual(q); }
+  bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override { return inner_.hits(q, id); }
+  double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return inner_.clearance(q); }
+  bool checksSelfCollision() const override { return false; }
+  std::uint64_t collisionChecks() const override { return asked.size(); }
+  mutable std::vector<double> asked;
+
+ private:
+  const ValidityChecker& inner_;
+};
+
+// The bisection order by a queue of intervals: the midpoints of ever finer intervals, level by level.
+std::vector<std::int64_t> queueOrder(std::int64_t segments) {
+  std::vector<std::int64_t> order;
+  std::queue<std::pair<std::int64_t, std::int64_t>> intervals;
+  intervals.emplace(0, segments);
+  while (!intervals.empty()) {
+    const auto [lo, hi] = intervals.front();
+    intervals.pop();
+    if (hi - lo < 2) continue;
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    order.push_back(mid);
+    intervals.emplace(lo, mid);
+    intervals.emplace(mid, hi);
+  }
+  return order;
+}
+
+// isValid keeps no queue (a queue of n/2 intervals is 16 GB at the 2^30 checks a scenario allows), and
+// checks the same points in the same order as one, stopping at the same first collision.
+TEST(MotionValidatorTest, BisectionChecksInTheOrderOfAQueueOfIntervals) {
+  WallWorld world(5, 0.1);
+  const RecordingChecker recording(world.checker);
+  for (std::int64_t segments = 1; segments <= 70; ++segments) {
+    recording.asked.clear();
+    // A free row (y = 9) from x = 1 to 9 cut into `segments` pieces.
+    const DiscreteMotionValidator validator(recording, world.space, 8.0 / segments + 1e-12);
+    EXPECT_TRUE(validator.isValid(Eigen::Vector2d(1, 9), Eigen::Vector2d(9, 9)));
+    const std::vector<std::int64_t> expected = queueOrder(segments);
+    ASSERT_EQ(recording.asked.size(), expected.size()) << segments;
+    for (size_t k = 0; k < expected.size(); ++k)
+      EXPECT_NEAR(recording.asked[k], 1 + 8.0 * static_cast<double>(expected[k]) / segments, 1e-9)
+          << segments << " pieces, check " << k;
+  }
+  // 8 pieces from x = 0.5 to 8.5 through a wall at x in [3.4, 3.6]: points 4, 2, 6, 1 are free, 3 is not.
+  WallWorld wall(3.5, 0.2);
+  const RecordingChecker walled(wall.checker);
+  const DiscreteMotionValidator through(walled, wall.space, 1.0);
+  EXPECT_FALSE(through.isValid(Eigen::Vector2d(0.5, 5), Eigen::Vector2d(8.5 - 1e-9, 5)));
+  ASSERT_EQ(walled.asked.size(), 5u);
+  const double expected[] = {4.5, 2.5, 6.5, 1.5, 3.5};
+  for (size_t k = 0; k < 5; ++k) EXPECT_NEAR(walled.asked[k], expected[k], 1e-8) << k;
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "bench/experiments/experiment.hpp"
 #include "bench/experiments/output_text.hpp"
+#include "bench/experiments/run_records.hpp"
 #include "bench/experiments/scenario_check.hpp"
 #include "cspace/collision_checker.hpp"
 
@@ -194,6 +195,68 @@ TEST(DriverOutput, CheckWarnsOfObstaclesThinnerThanAStep) {
   const std::string text = out.str();
   EXPECT_NE(text.find("warning    obstacle 'foil' is 0.004 thick"), std::string::npos) << text;
   EXPECT_EQ(text.find("'plank'", text.find("warning")), std::string::npos) << text;
+}
+
+// --check refuses what planning refuses: an obstacle's sample that does not hit it.
+TEST(DriverOutput, CheckNamesASampleThatMissesItsObstacle) {
+  const cspace::Scenario scenario = cspace::parseScenario(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: hit, shape: box, size: [0.2, 0.2, 1], position: [0.3, 0.3, 0], sample: [0.3, 0.3]}\n"
+      "  - {name: missed, shape: box, size: [0.2, 0.2, 1], position: [0.7, 0.7, 0], sample: [0.5, 0.5]}\n"
+      "start: [0.1, 0.9]\ngoal: [0.9, 0.1]\nresolution: 0.01\n",
+      "samples.yaml");
+  std::ostringstream out;
+  EXPECT_FALSE(printScenarioCheck(scenario, out));
+  EXPECT_NE(out.str().find("sample     [0.3, 0.3] hits obstacle 'hit'"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("error      sample [0.5, 0.5] does NOT hit obstacle 'missed'"), std::string::npos)
+      << out.str();
+}
+
+// --merge takes only what svmp-plan writes: every seed answering every query once, counts that are
+// counts. A shard with one record too many once wrote past the end of the table's totals.
+TEST(DriverOutput, MergeRefusesShardsThatAreNotOneRun) {
+  const std::string scenario = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/thesis_fig3_5.yaml";
+  cspace::Scenario fig35 = cspace::loadScenario(scenario);
+  DriverOptions options;
+  options.scenario = scenario;
+  options.planners = {"prm"};
+  options.runs = 2;
+  std::ostringstream log;
+  const auto results = runExperiment(fig35, options, log);
+  const fs::path dir = fs::temp_directory_path() / "svmp_driver_merge_test";
+  fs::create_directories(dir);
+  const std::string good = (dir / "good.json").string();
+  writeJson(good, fig35, options, results);
+  EXPECT_EQ(mergeShards({good}, "").results[0].runs.size(), 2u);
+  std::ifstream in(good);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // `text` with the first `from` after `after` replaced by `to`, written as `name`.
+  auto variant = [&](const std::string& name, const std::string& from, const std::string& to,
+                     const std::string& after = "") {
+    std::string changed = text;
+    const size_t at = changed.find(from, after.empty() ? 0 : changed.find(after));
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) changed.replace(at, from.size(), to);
+    std::ofstream((dir / name).string()) << changed;
+    return (dir / name).string();
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      // Records are written compact ("key":value).
+      {variant("query.json", "\"query\":0,", "\"query\":1,"), "query 1 is not one of the scenario's 1 queries"},
+      {variant("count.json", "\"collision_checks\":", "\"collision_checks\":-", "\"records\""),
+       "must be a non-negative integer"},
+      {variant("threads.json", "\"threads\": 1", "\"threads\": -7"), "not svmp-plan's options"},
+      {variant("planner.json", "\"planner\": \"prm\"", "\"planner\": \"prn\""), "planner 'prn' is not one"}};
+  for (const auto& [file, expected] : cases) {
+    try {
+      mergeShards({file}, "");
+      ADD_FAILURE() << file << " merged";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+  fs::remove_all(dir);
 }
 
 // --check names link pairs it leaves out because they touch in every sampled configuration: a

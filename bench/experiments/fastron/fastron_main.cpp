@@ -2,6 +2,7 @@
 // (docs/fastron.md). --experiment collision: sec. IV-A (Table I, Figs 4 and 7); planning: sec. IV-B
 // (Fig 6); picture: Fig 1 (a 3-DoF arm's C-space slice, SVG); all: every one. Prints tables, writes
 // JSON (whole or not at all). Bad input: one error naming the flag or field, exit status 2.
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -12,6 +13,8 @@
 #include "bench/experiments/fastron/collision_experiment.hpp"
 #include "bench/experiments/fastron/cspace_picture.hpp"
 #include "bench/experiments/fastron/planning_experiment.hpp"
+#include "bench/experiments/output_text.hpp"
+#include "planners/planner_registry.hpp"
 
 namespace {
 
@@ -114,11 +117,21 @@ int main(int argc, char** argv) {
     const auto fk = cspace::FastronCheckerOptions::fromParameters("fastron-fk", flags.params["fastron-fk"]);
     const auto rbf = cspace::FastronCheckerOptions::fromParameters("fastron-rbf", flags.params["fastron-rbf"]);
     for (auto& [name, p] : flags.params) p.requireAllUsed();
+    const bool plans = flags.experiment == "all" || flags.experiment == "planning";
+    if (!flags.planners.empty() && !plans)
+      throw cspace::ScenarioError("flag --planners: only --experiment planning (or all) plans; this run is '" +
+                                  flags.experiment + "'");
+    // Before the experiments, which take minutes: a bad name must not wait for them.
+    const auto planner_list = flags.planners.empty() ? std::vector<std::string>() : experiments::parsePlannerList(flags.planners);
+    const auto known = planners::plannerNames();
+    for (const auto& name : planner_list)
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        throw cspace::ScenarioError("flag --planners: unknown planner '" + name + "'");
     if (!flags.json.empty()) experiments::checkWritable("--json", flags.json);
     if (!flags.svg.empty()) experiments::makeDirectory("--svg", flags.svg);
     const bool all = flags.experiment == "all";
     std::ostringstream json;
-    json << "{\"scenario\": \"" << scenario.name << "\", \"seed\": " << flags.seed;
+    json << "{\"scenario\": " << experiments::jsonString(scenario.name) << ", \"seed\": " << flags.seed;
     if (all || flags.experiment == "collision") {
       experiments::fastron::CollisionExperimentOptions o;
       o.trials = flags.trials, o.moves = flags.moves, o.test_samples = flags.test_samples, o.seed = flags.seed;
@@ -132,7 +145,7 @@ int main(int argc, char** argv) {
       experiments::fastron::PlanningExperimentOptions o;
       o.trials = flags.trials, o.moves = flags.moves, o.plans_per_move = flags.plans_per_move, o.seed = flags.seed;
       o.time_limit = flags.time_limit, o.fk = fk, o.rbf = rbf;
-      if (!flags.planners.empty()) o.planners = experiments::parsePlannerList(flags.planners);
+      if (!planner_list.empty()) o.planners = planner_list;
       const auto r = experiments::fastron::runPlanningExperiment(scenario, o, std::cerr);
       experiments::fastron::printPlanningTable(r, std::cout);
       json << ", \"planning\": " << experiments::fastron::planningJson(r);
@@ -143,7 +156,7 @@ int main(int argc, char** argv) {
       std::cout << "\nFig 1: " << r.file << " (ground truth " << r.grid << "x" << r.grid << ", fastron-fk "
                 << r.fk_support << " support points, " << r.fk_accuracy * 100 << "% on the grid; fastron-rbf "
                 << r.rbf_support << ", " << r.rbf_accuracy * 100 << "%)\n";
-      json << ", \"picture\": {\"file\": \"" << r.file << "\", \"fk_support\": " << r.fk_support
+      json << ", \"picture\": {\"file\": " << experiments::jsonString(r.file) << ", \"fk_support\": " << r.fk_support
            << ", \"rbf_support\": " << r.rbf_support << ", \"fk_accuracy\": " << r.fk_accuracy
            << ", \"rbf_accuracy\": " << r.rbf_accuracy << "}";
     }
