@@ -3,10 +3,14 @@
 // certifier, verify and repair, path measurements), so a seed gives the same result here as there.
 #include <pybind11/stl.h>
 
+#include <pthread.h>
+
+#include <atomic>
 #include <memory>
 #include <sstream>
 
 #include "bench/experiments/experiment.hpp"
+#include "bench/experiments/scenario_check.hpp"
 #include "cspace/collision_checker.hpp"
 #include "planners/planner_registry.hpp"
 #include "python/arrays.hpp"
@@ -37,27 +41,55 @@ struct Plan {
   py::dict counters;
 };
 
-// A --set value as svmp-plan would read it from the command line.
-std::string parameterText(const py::handle& value) {
+// A --set value as svmp-plan would read it from the command line. NumPy scalars (np.float64(0.4),
+// np.bool_) are read as the Python values they hold, not as their repr.
+std::string parameterText(const py::handle& given) {
+  const py::object value = py::hasattr(given, "item") && py::hasattr(given, "dtype") ? given.attr("item")()
+                                                                                   : py::reinterpret_borrow<py::object>(given);
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::float_>(value)) return py::str(py::repr(value));  // shortest round-trip digits
+  if (py::isinstance<py::float_>(value)) return py::str(py::repr(py::float_(value)));  // shortest round-trip digits
   return py::str(value);
 }
 
-Plan plan(const Scenario& s, const std::string& planner, long long seed, const py::dict& params, int query,
-          const std::string& checker, double time_limit, int threads, bool simplify) {
-  if (seed < 0 || seed > experiments::kMaxSeed)
-    throw py::value_error("seed is " + std::to_string(seed) + ": must be in [0, 2^62]");
+// An integer argument in [lo, hi], compared as a Python integer: 2**63 is a ValueError naming the
+// argument, not pybind11's TypeError about the signature.
+long long integerArgument(const py::int_& value, const std::string& name, long long lo, long long hi,
+                          const std::string& why) {
+  if (value < py::int_(lo) || value > py::int_(hi))
+    throw py::value_error(name + " is " + py::str(static_cast<const py::object&>(value)).cast<std::string>() + ": " + why);
+  return value.cast<long long>();
+}
+
+// libgomp's thread pool does not survive fork(): a process forked from one that ran a parallel region
+// waits forever in its first own (multiprocessing's default start method on Linux). Such a child plans
+// on one thread, which gives the same result, and says so.
+std::atomic<bool> parallel_used{false};
+bool forked_after_parallel = false;
+void afterForkInChild() { forked_after_parallel = parallel_used.load(); }
+
+Plan plan(const Scenario& s, const std::string& planner, const py::int_& seed_in, const py::dict& params,
+          const py::int_& query_in, const std::string& checker, double time_limit, const py::int_& threads_in,
+          bool simplify) {
+  const long long seed = integerArgument(seed_in, "seed", 0, experiments::kMaxSeed, "must be in [0, 2^62]");
   const int queries = static_cast<int>(s.scenario.queries.size());
-  if (query < 0 || query >= queries)
-    throw py::value_error("query is " + std::to_string(query) + ": the scenario has " + std::to_string(queries) +
-                          " quer" + (queries == 1 ? "y" : "ies"));
+  const int query = static_cast<int>(integerArgument(query_in, "query", 0, queries - 1,
+                                                     "the scenario has " + std::to_string(queries) + " quer" +
+                                                         (queries == 1 ? "y" : "ies")));
+  int threads = static_cast<int>(integerArgument(threads_in, "threads", 1, experiments::kMaxThreads,
+                                                 "must be in [1, " + std::to_string(experiments::kMaxThreads) + "]"));
+  if (threads > 1 && forked_after_parallel) {
+    if (PyErr_WarnEx(PyExc_RuntimeWarning,
+                     "svmp.plan: this process was forked after svmp planned on several threads, and OpenMP "
+                     "cannot run threads in it (it would hang): planning on 1 thread, with the same result. "
+                     "Use multiprocessing.get_context('spawn') for more.",
+                     1) != 0)
+      throw py::error_already_set();
+    threads = 1;
+  }
+  if (threads > 1) parallel_used = true;
   if (!experiments::isCheckerName(checker))
     throw py::value_error("checker is '" + checker + "': expected fcl, fastron-fk or fastron-rbf");
   if (!(time_limit >= 0)) throw py::value_error("time_limit is " + numberText(time_limit) + ": must be >= 0 (0: none)");
-  if (threads < 1 || threads > experiments::kMaxThreads)
-    throw py::value_error("threads is " + std::to_string(threads) + ": must be in [1, " +
-                          std::to_string(experiments::kMaxThreads) + "]");
   experiments::DriverOptions options;
   options.scenario = s.scenario.path;
   options.planners = {planner};
@@ -78,6 +110,7 @@ Plan plan(const Scenario& s, const std::string& planner, long long seed, const p
   }
   cspace::Scenario one = s.scenario;
   one.queries = {s.scenario.queries[query]};
+  experiments::requireValidConfigurations(one);  // as svmp-plan: a start in collision, a sample off its obstacle
   experiments::RunRecord record;
   {
     py::gil_scoped_release release;
@@ -162,6 +195,7 @@ void bindPlanning(py::module_& m) {
         "Runs one registered planner on one query of the scenario as svmp-plan does (--seed, --set PLANNER.KEY=VALUE "
         "from params, --checker, --time-limit, --threads, --simplify); the path is certified collision-free.");
   m.def("planners", &planners::plannerNames, "registered planner names");
+  ::pthread_atfork(nullptr, nullptr, &afterForkInChild);
 }
 
 }  // namespace svmp::python

@@ -57,6 +57,7 @@ Model train(const py::object& X_in, const py::object& y_in, const py::object& C_
   for (Eigen::Index i = 0; i < y.size(); ++i)
     if (y[i] != 1 && y[i] != -1)
       throw py::value_error("y[" + std::to_string(i) + "] is " + numberText(y[i]) + ": labels must be +1 or -1");
+  if (C_in.is_none()) throw py::value_error("C is None: give a positive number, or one per sample");
   Eigen::VectorXd C;
   const DoubleArray c = DoubleArray::ensure(C_in);
   const bool one_C = c && c.ndim() == 0;
@@ -70,6 +71,9 @@ Model train(const py::object& X_in, const py::object& y_in, const py::object& C_
     throw py::value_error("gamma is " + numberText(*gamma) + ": must be positive and finite");
   if (sigma && !(*sigma > 0 && std::isfinite(*sigma)))
     throw py::value_error("sigma is " + numberText(*sigma) + ": must be positive and finite");
+  if (const double g = sigma ? 1 / (2 * *sigma * *sigma) : 1; !(g > 0 && std::isfinite(g)))
+    throw py::value_error("sigma is " + numberText(*sigma) + ": gamma = 1 / (2 sigma^2) = " + numberText(g) +
+                          " is out of a double's range");
   const svm::Kernel kernel = sigma ? svm::Kernel::rbfFromSigma(*sigma) : svm::Kernel::rbf(gamma.value_or(1.0));
   svm::SolverOptions options;
   options.eps = eps, options.max_iterations = max_iterations, options.cache_mb = cache_mb, options.shrinking = shrinking;

@@ -248,7 +248,10 @@ SVMP_INLINE void rbfColumnImpl(const double* coords, long stride, int d, const d
       const double diff = coords[k * stride + t] - z[k];
       dist += diff * diff;
     }
-    out[t] = static_cast<Out>(expNonPositive(neg_gamma * dist));
+    // The vectors' polynomial, not expNonPositive's degree 12: which entries are left to this tail
+    // depends on the lane count and on where a partly cached column resumes, and a float entry must
+    // not depend on either (AVX2 and AVX-512 machines, or two cache sizes, train alike).
+    out[t] = static_cast<Out>(expNonPositiveOf<kFloat ? 8 : 12, double, long long>(neg_gamma * dist));
   }
 }
 

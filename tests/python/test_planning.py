@@ -117,6 +117,10 @@ def test_bad_plan_arguments_raise_value_error(fig35):
         svmp.plan(fig35, "svmp", query=1)
     with pytest.raises(ValueError, match=r"seed is -1: must be in \[0, 2\^62\]"):
         svmp.plan(fig35, "svmp", seed=-1)
+    with pytest.raises(ValueError, match=r"seed is 9223372036854775808: must be in"):
+        svmp.plan(fig35, "svmp", seed=2**63)  # past a C++ long long: still the range, not a TypeError
+    with pytest.raises(ValueError, match=r"threads is 1099511627776: must be in \[1, "):
+        svmp.plan(fig35, "svmp", threads=2**40)
     with pytest.raises(ValueError, match="checker is 'gjk'"):
         svmp.plan(fig35, "svmp", checker="gjk")
     with pytest.raises(ValueError, match=r"q: expected shape \(2,\), got \(3,\)"):
@@ -128,3 +132,44 @@ def test_bad_plan_arguments_raise_value_error(fig35):
 def test_planners_lists_the_registry():
     names = svmp.planners()
     assert {"svmp", "prm", "local", "svpp"} <= set(names) and names == sorted(names)
+
+
+def test_numpy_scalars_are_parameter_values(fig35):
+    """np.float64(0.4) prints as 'np.float64(0.4)' under NumPy 2 and np.bool_ as 'True': both are read
+    as the Python values they hold, the same run as with plain floats and bools."""
+    plain = svmp.plan(fig35, "svmp", params={"sigma": 0.4, "step": 0.3})
+    numpy = svmp.plan(fig35, "svmp", params={"sigma": np.float64(0.4), "step": np.float64(0.3)})
+    assert plain.counters["collision_checks"] == numpy.counters["collision_checks"]
+    np.testing.assert_array_equal(plain.path, numpy.path)
+    assert svmp.plan(fig35, "prm", params={"samples": np.int64(100)}).status in ("solved", "failed")
+
+
+def test_a_scenario_planning_refuses_is_refused_here_too(tmp_path):
+    """As svmp-plan: an obstacle's sample that misses its obstacle (plan() once trained on it)."""
+    bad = tmp_path / "bad_sample.yaml"
+    bad.write_text("robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+                   "obstacles: [{name: wall, shape: box, size: [0.2, 0.2, 1], position: [0.8, 0.8, 0], "
+                   "sample: [0.5, 0.5]}]\nstart: [0.1, 0.1]\ngoal: [0.2, 0.2]\nresolution: 0.01\n")
+    with pytest.raises(svmp.ScenarioError, match=r"obstacles\[0\]\.sample.*does not hit obstacle 'wall'"):
+        svmp.plan(svmp.load_scenario(str(bad)), "prm")
+
+
+def _plan_in_a_forked_child(path):
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        plan = svmp.plan(svmp.load_scenario(path), "prm", seed=3, threads=2)
+    return plan.counters["collision_checks"], [str(w.message) for w in caught]
+
+
+def test_a_process_forked_after_parallel_planning_plans_on_one_thread():
+    """libgomp's threads do not survive fork(): a forked child that plans on several threads after the
+    parent did would wait forever. It plans on one thread (the same counts) and warns."""
+    import multiprocessing
+    path = scenario_path("thesis_fig3_5.yaml")
+    parent = svmp.plan(svmp.load_scenario(path), "prm", seed=3, threads=2)
+    with multiprocessing.get_context("fork").Pool(1) as pool:
+        result = pool.apply_async(_plan_in_a_forked_child, (path,))
+        checks, messages = result.get(timeout=60)
+    assert checks == parent.counters["collision_checks"]
+    assert any("planning on 1 thread" in m for m in messages)

@@ -103,7 +103,7 @@ TEST(Solver, OtherKernelsReachKkt) {
 }
 
 TEST(Solver, TinyCacheGivesTheSameSolution) {
-  const auto p = makeBallProblem(3, 1500, 3, 21);
+  const auto p = makeBallProblem(3, 1501, 3, 21);  // odd: columns have a scalar tail
   const Eigen::VectorXd y = p.binary(2);
   const Eigen::VectorXd C = Eigen::VectorXd::Constant(y.size(), kC);
   const Kernel k = Kernel::rbfFromSigma(sigmaFor(p));
@@ -114,6 +114,11 @@ TEST(Solver, TinyCacheGivesTheSameSolution) {
   const SolverResult b = solveBinary(p.X, y, C, k, tiny);
   EXPECT_NEAR(a.objective, b.objective, 1e-9 * std::abs(a.objective));
   EXPECT_GT(b.cache_misses, a.cache_misses);
+  // Bit for bit: a column resumed from a partly cached one has its entries computed by other lanes
+  // (vector body or scalar tail), and they must agree.
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.bias, b.bias);
+  EXPECT_TRUE(a.alpha == b.alpha);
   SolverOptions noshrink = big;
   noshrink.shrinking = false;
   const SolverResult c = solveBinary(p.X, y, C, k, noshrink);
