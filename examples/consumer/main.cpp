@@ -1,6 +1,8 @@
 // Plans on a scenario with every planner given on the command line through the installed svmp
-// package, certifying each path: usage `consumer SCENARIO.yaml [PLANNER ...]` (default svmp, prm).
+// package, certifying each path: usage `consumer SCENARIO.yaml [PLANNER ...]` (default svmp, ompl-rrtconnect
+// when the package has OMPL, else svmp).
 // Exit 0 when every planner returns a certified path.
+#include <algorithm>
 #include <iostream>
 
 #include "cspace/certified_motion_validator.hpp"
@@ -23,7 +25,11 @@ int main(int argc, char** argv) {
     const cspace::CertifiedMotionValidator certifier(checker, space, scenario.resolution);
     const planners::PlanningContext context{space, checker, validator, 1, &certifier};
     std::vector<std::string> names(argv + 2, argv + argc);
-    if (names.empty()) names = {"svmp", "prm"};
+    if (names.empty()) {  // the thesis' PRM fails some seeds of some files by design: not a default
+      const auto known = planners::plannerNames();
+      const bool ompl = std::find(known.begin(), known.end(), "ompl-rrtconnect") != known.end();
+      names = ompl ? std::vector<std::string>{"svmp", "ompl-rrtconnect"} : std::vector<std::string>{"svmp"};
+    }
     std::cout << planners::plannerNames().size() << " planners registered\n";
     bool all = true;
     for (const auto& name : names) {
