@@ -70,14 +70,18 @@ bool checkEndpoints(const PlanningContext& context, const cspace::Query& query, 
     result.message = "query size differs from the configuration space's dimension";
     return false;
   }
-  if (const int hit = context.checker.check(query.start); hit != cspace::kFree) {
+  // Whether the query is valid is the problem's question, not a learned proxy's: a proxy that has not
+  // converged may predict a free goal in collision, and the planner must then try (and may fail), not
+  // report the query invalid.
+  const cspace::ValidityChecker& judge = context.repairer ? context.repairer->exactContext().checker : context.checker;
+  if (const int hit = judge.check(query.start); hit != cspace::kFree) {
     result.status = PlanStatus::kInvalidStart;
-    result.message = "start is " + cspace::describeHit(context.checker.environment(), hit);
+    result.message = "start is " + cspace::describeHit(judge.environment(), hit);
     return false;
   }
-  if (const int hit = context.checker.check(query.goal); hit != cspace::kFree) {
+  if (const int hit = judge.check(query.goal); hit != cspace::kFree) {
     result.status = PlanStatus::kInvalidGoal;
-    result.message = "goal is " + cspace::describeHit(context.checker.environment(), hit);
+    result.message = "goal is " + cspace::describeHit(judge.environment(), hit);
     return false;
   }
   return true;

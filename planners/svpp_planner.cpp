@@ -131,11 +131,16 @@ SVMP_REGISTER_PLANNER("svpp",
                             SvppOptions::fromParameters(params).resolvedFor(
                                 context.space, context.checker.environment().numReal());
                         if (const std::string why = o.validateFor(context.space); !why.empty()) {
-                          // Every message starts with the parameter it is about.
-                          const std::string key = why.substr(0, why.find_first_of(" ,("));
-                          throw cspace::ScenarioError(params.declarations().count(key)
-                                                          ? params.describe(key) + ": " + why
-                                                          : "planners.svpp: " + why);
+                          // Blame a parameter the message names and the user set (file or --set):
+                          // `guide_distance must exceed virtual_distance` after --set virtual_distance
+                          // is about the flag, not the file's unset guide_distance.
+                          std::string key;
+                          for (const auto& [name, declaration] : params.declarations())
+                            if (params.has(name) && why.find(name) != std::string::npos &&
+                                (key.empty() || why.find(name) < why.find(key)))
+                              key = name;
+                          throw cspace::ScenarioError(!key.empty() ? params.describe(key) + ": " + why
+                                                                   : "planners.svpp: " + why);
                         }
                         return std::make_unique<SvppPlanner>(context, o);
                       });

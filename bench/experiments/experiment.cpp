@@ -98,7 +98,8 @@ planners::SvppOptions svmSmoothingOptions(const cspace::Scenario& scenario, cons
   const cspace::ParameterSet params = parametersFor("svpp", scenario, options);
   const auto svpp = planners::SvppOptions::fromParameters(params);
   params.requireAllUsed();
-  if (const std::string why = svpp.validate(); !why.empty())
+  const cspace::ConfigurationSpace space = scenario.makeSpace();
+  if (const std::string why = svpp.resolvedFor(space, scenario.environment->numReal()).validateFor(space); !why.empty())
     throw cspace::ScenarioError(scenario.path + ": --simplify svpp: svpp parameters: " + why);
   if (!dynamic_cast<const robots::PointRobot*>(scenario.robot.get()))
     throw cspace::ScenarioError(scenario.path + ": --simplify svpp smooths the paths of point robots in 2-D and 3-D; "
@@ -170,15 +171,23 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
     for (const auto& [key, declaration] : params.declarations())
       values[key] = params.has(key) ? params.values().at(key) : declaration.fallback;
   }
+  return planners;
+}
+
+// Every --set names a planner of --planners, the proxy checker of --checker or --simplify svpp's
+// smoothing; checked before the proxy learns (minutes on an arm).
+void checkOverrideTargets(const DriverOptions& options) {
   for (const auto& [key, value] : options.overrides) {
-    const std::string planner = key.substr(0, key.find('.'));
-    if (planner == options.checker) continue;  // the proxy checker's own parameters
-    if (planner == "svpp" && options.simplify_svm) continue;  // the smoothing's
-    if (std::find(options.planners.begin(), options.planners.end(), planner) == options.planners.end())
-      throw cspace::ScenarioError("flag --set " + key + "=" + value + ": planner '" + planner +
+    const std::string target = key.substr(0, key.find('.'));
+    if (target == options.checker) continue;  // the proxy checker's own parameters
+    if (target == "svpp" && options.simplify_svm) continue;  // the smoothing's
+    if (isCheckerName(target))
+      throw cspace::ScenarioError("flag --set " + key + "=" + value + ": '" + target + "' is a checker, and --checker is " +
+                                  options.checker);
+    if (std::find(options.planners.begin(), options.planners.end(), target) == options.planners.end())
+      throw cspace::ScenarioError("flag --set " + key + "=" + value + ": planner '" + target +
                                   "' is not among --planners");
   }
-  return planners;
 }
 
 // Pictures of one run (thesis Figs 3.1-3.8, 4.5, 4.7): what the planner learned and its path.
@@ -241,6 +250,7 @@ bool sharedBuild(const cspace::Scenario& scenario, const DriverOptions& options)
 }
 
 void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options) {
+  checkOverrideTargets(options);
   std::ostringstream quiet;
   const World world(scenario, options, quiet);
   makePlanners(scenario, options, world.context);
@@ -249,13 +259,15 @@ void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& opt
 
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
                                        std::ostream& log) {
+  checkOverrideTargets(options);
+  // Before the proxy learns: a bad smoothing parameter or robot must not wait for it.
+  const auto smoothing_options = options.simplify_svm ? svmSmoothingOptions(scenario, options) : planners::SvppOptions();
   const World world(scenario, options, log);
   for (const auto& [a, b] : world.checker.droppedSelfCollisionPairs())
     log << "svmp-plan: " << droppedPairWarning(a, b) << " (--check)\n";
   // Every planner is built first: a bad parameter stops the run before any work.
   std::vector<std::map<std::string, std::string>> parameters;
   auto planners = makePlanners(scenario, options, world.context, &parameters);
-  const auto smoothing_options = options.simplify_svm ? svmSmoothingOptions(scenario, options) : planners::SvppOptions();
   std::vector<PlannerRuns> results;
   for (size_t p = 0; p < planners.size(); ++p) results.push_back({options.planners[p], {}, parameters[p]});
   const auto& queries = scenario.queries;

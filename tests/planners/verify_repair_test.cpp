@@ -56,6 +56,30 @@ TEST(VerifyRepair, PathsOnAStaleProxyAreCertifiedOnTheExactChecker) {
   EXPECT_GT(repaired, 0) << "the stale proxy never needed a repair: the test would not exercise it";
 }
 
+// Whether a query is valid is the exact checker's call: a proxy (here the stale world's checker) that
+// predicts a free goal in collision must not make a planner call the query invalid.
+TEST(VerifyRepair, AProxysWrongEndpointPredictionDoesNotMakeTheQueryInvalid) {
+  const ProxyWorld pw;
+  Eigen::VectorXd goal;
+  for (double x = 0; x <= 1 && goal.size() == 0; x += 0.01)
+    for (double y = 0; y <= 1; y += 0.01) {
+      const Eigen::Vector2d q(x, y);
+      if (pw.stale->checker.check(q) != cspace::kFree && pw.w->checker.check(q) == cspace::kFree) {
+        goal = q;
+        break;
+      }
+    }
+  ASSERT_EQ(goal.size(), 2) << "test premise: the stale wall covers free space of the real world";
+  const cspace::Query query{pw.w->query().start, goal, {}};
+  const PlanningContext on_proxy{pw.w->space, pw.stale->checker, pw.stale->validator, 1, &pw.certifier, &pw.repairer};
+  auto planner = makePlanner("prm", on_proxy, cspace::ParameterSet());
+  const PlanResult r = planner->solve(query, 1, Termination::after(2));
+  EXPECT_NE(r.status, PlanStatus::kInvalidGoal) << r.message;
+  // Without a repairer the checker is the exact one: then its word is the query's validity.
+  const PlanningContext exact_stale{pw.w->space, pw.stale->checker, pw.stale->validator, 1};
+  EXPECT_EQ(makePlanner("prm", exact_stale, cspace::ParameterSet())->solve(query, 1).status, PlanStatus::kInvalidGoal);
+}
+
 // The OMPL planners added for the Fastron experiments, on the exact checker with verify and repair as
 // the driver runs them: each solves the gap and returns a certified path that a dense re-check accepts.
 TEST(VerifyRepair, EveryOmplTreePlannerReturnsCertifiedPaths) {

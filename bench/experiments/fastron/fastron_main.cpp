@@ -79,7 +79,10 @@ Flags parse(int argc, char** argv) {
     else if (flag == "--plans-per-move") f.plans_per_move = static_cast<int>(parseInt(flag, v, 1, 100000));
     else if (flag == "--time-limit") f.time_limit = parseDouble(flag, v, 1e-3, 1e6);
     else if (flag == "--seed") f.seed = static_cast<std::uint64_t>(parseInt(flag, v, 0, 1L << 62));
-    else if (flag == "--planners") f.planners = v;
+    else if (flag == "--planners") {
+      if (v.empty()) throw cspace::ScenarioError("flag --planners: empty list");
+      f.planners = v;
+    }
     else if (flag == "--json") f.json = v;
     else if (flag == "--svg") f.svg = v;
     else if (flag == "--set") {
