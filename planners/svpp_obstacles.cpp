@@ -151,14 +151,16 @@ bool partsOverlap(const ConvexPart& a, const ConvexPart& b, double tolerance) {
   return true;
 }
 
-std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts) {
+std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts, const std::function<bool()>& stop) {
   const int n = static_cast<int>(parts.size());
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < n; ++i) {
+    if (stop && stop()) return {};
     for (int j = i + 1; j < n; ++j)
       if (findRoot(parent, i) != findRoot(parent, j) && partsOverlap(parts[i], parts[j]))
         parent[findRoot(parent, j)] = findRoot(parent, i);
+  }
   std::vector<SvppObstacle> merged;
   std::vector<int> group_of(n, -1);
   for (int i = 0; i < n; ++i) {  // parts come in id order, so groups are ordered by smallest id
@@ -174,6 +176,7 @@ std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts) {
     o.centroid = Eigen::VectorXd::Zero(dim);
     std::vector<Eigen::VectorXd> samples, vertices;
     for (const ConvexPart& part : o.parts) {
+      if (stop && stop()) return {};  // each part is tested against every other of its group
       measure += part.measure;
       o.centroid += part.measure * part.centroid;
       std::vector<Eigen::VectorXd> candidates;

@@ -8,6 +8,7 @@
 // strictly inside another part of the same merged obstacle is dropped (it carries no boundary
 // information). Pure functions on values: thread-safe.
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,8 +58,9 @@ struct SvppObstacle {
 Eigen::MatrixXd allVertices(const std::vector<SvppObstacle>& obstacles, int dim);
 
 // Merges overlapping parts (union-find over partsOverlap) and makes each group's samples. Groups
-// are ordered by their smallest environment id.
-std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts);
+// are ordered by their smallest environment id. Quadratic in the parts that overlap: `stop`, polled
+// once a part, ends it with nothing returned.
+std::vector<SvppObstacle> mergeObstacles(std::vector<ConvexPart> parts, const std::function<bool()>& stop = {});
 
 // The real (not virtual) obstacles of `environment` as parts in a `dim`-dimensional space (2 or 3),
 // grown by `inflate` (the point robot's radius). Throws std::invalid_argument for another dim.

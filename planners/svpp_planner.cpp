@@ -116,9 +116,10 @@ SurfaceFollowing SvppOptions::following(const cspace::Query& query, const Eigen:
 }
 
 svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, double eps,
-                                svm::SolverWorkspace* workspace) {
+                                svm::SolverWorkspace* workspace, const std::function<bool()>& stop) {
   svm::SolverOptions solver;
   solver.eps = eps;
+  solver.stop = stop;
   const svm::Kernel kernel = svm::Kernel::rbf(gamma);
   const svm::SolverResult solution = svm::solveBinary(set.X, set.y, Eigen::VectorXd::Constant(set.size(), C),
                                                       kernel, solver, nullptr, workspace);
@@ -171,7 +172,7 @@ PlannerView SvppPlanner::view() const {
   return v;
 }
 
-void SvppPlanner::buildRoadmap(std::uint64_t, const Termination&, PlanResult& result) {
+void SvppPlanner::buildRoadmap(std::uint64_t, const Termination& stop, PlanResult& result) {
   const auto t0 = Clock::now();
   const auto* point = dynamic_cast<const robots::PointRobot*>(&context_.checker.robot());
   if (!point) {
@@ -180,9 +181,14 @@ void SvppPlanner::buildRoadmap(std::uint64_t, const Termination&, PlanResult& re
                      context_.checker.robot().name() + "'";
     return;
   }
-  obstacles_ =
-      mergeObstacles(obstacleParts(context_.checker.environment(), point->dof(), point->radius()));
+  obstacles_ = mergeObstacles(obstacleParts(context_.checker.environment(), point->dof(), point->radius()),
+                              stop.asFunction());
   result.times.sampling_ms += msSince(t0);
+  if (stop()) {
+    result.status = PlanStatus::kTimeout;
+    result.message = "time limit reached while merging overlapping obstacles";
+    return;
+  }
   result.status = PlanStatus::kSolved;
 }
 
@@ -202,9 +208,11 @@ SvppTrial SvppPlanner::tryPattern(const cspace::Query& query, const Pattern& pat
                                      space.lower(), space.upper());
   times.sampling_ms += msSince(t0);
   t0 = Clock::now();
-  trial.model = trainSvppModel(trial.samples, options_.gamma, options_.C, options_.eps, &workspace_);
+  trial.model = trainSvppModel(trial.samples, options_.gamma, options_.C, options_.eps, &workspace_,
+                               stop.asFunction());
   trial.svm_ms = msSince(t0);
   times.training_ms += trial.svm_ms;
+  if (stop()) return trial;  // a solve the limit cut short: no model to follow
   t0 = Clock::now();
   SurfaceFollowing following = options_.following(query, space.lower(), space.upper());
   following.max_length = best_length;

@@ -17,6 +17,7 @@
 // Other robots and spaces of another dimension give kInvalidInput. Parameters (scenario
 // `planners.svpp`): the fields of SvppOptions, same names. Every random choice flows from the query's
 // seed. Thread safety: as every Planner (planners/planner.hpp); single-threaded inside.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -97,9 +98,10 @@ struct SvppTrace {
 
 // Trains the RBF SVM of one training set (per-sample C all equal). Throws std::invalid_argument
 // when the set has one class only. `workspace`: kept between a query's patterns, its kernel cache's
-// memory is reused instead of taken afresh (and faulted in) by every solve.
+// memory is reused instead of taken afresh (and faulted in) by every solve. `stop` (polled by the
+// solver) may end the solve early: the caller then discards the model.
 svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, double eps,
-                                svm::SolverWorkspace* workspace = nullptr);
+                                svm::SolverWorkspace* workspace = nullptr, const std::function<bool()>& stop = {});
 
 class SvppPlanner final : public Planner {
  public:

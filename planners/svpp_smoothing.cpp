@@ -72,7 +72,7 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
                              const cspace::ValidityChecker& checker,
                              const cspace::MotionValidator& certifier,
                              const cspace::ConfigurationSpace& space, const SvppOptions& given_options,
-                             svm::SolverWorkspace* workspace) {
+                             svm::SolverWorkspace* workspace, const std::function<bool()>& stop) {
   const SvppOptions options = given_options.resolvedFor(space, checker.environment().numReal());
   SvmSmoothing out;
   out.path = given;
@@ -92,7 +92,11 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
   }
   const int dim = point->dof();
   const std::vector<SvppObstacle> obstacles =
-      mergeObstacles(obstacleParts(checker.environment(), dim, point->radius()));
+      mergeObstacles(obstacleParts(checker.environment(), dim, point->radius()), stop);
+  if (stop && stop()) {
+    out.why = "time limit reached while merging overlapping obstacles";
+    return out;
+  }
   const Eigen::VectorXd start = given.front(), goal = given.back();
 
   // The side normal of each segment: 2-D its right normal; 3-D the PCA plane normal made
@@ -178,12 +182,17 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
   }
   set.shrinkToFit();
 
-  const svm::BinaryModel model = trainSvppModel(set, options.gamma, options.C, options.eps, workspace);
+  const svm::BinaryModel model = trainSvppModel(set, options.gamma, options.C, options.eps, workspace, stop);
+  if (stop && stop()) {
+    out.why = "time limit reached while training the SVM";
+    return out;
+  }
   out.support_vectors = model.numSupportVectors();
   cspace::Query query;
   query.start = start;
   query.goal = goal;
   SurfaceFollowing following = options.following(query, space.lower(), space.upper());
+  following.stop = stop;
   if (options.max_steps == 0)
     following.max_steps = static_cast<int>(std::min(std::ceil(3 * path.length() / options.step), 1e7));
   const FollowResult follow =

@@ -43,6 +43,6 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& path,
                              const cspace::ValidityChecker& checker,
                              const cspace::MotionValidator& certifier,
                              const cspace::ConfigurationSpace& space, const SvppOptions& options,
-                             svm::SolverWorkspace* workspace = nullptr);
+                             svm::SolverWorkspace* workspace = nullptr, const std::function<bool()>& stop = {});
 
 }  // namespace svmp::planners

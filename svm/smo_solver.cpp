@@ -441,6 +441,10 @@ SolverResult SmoSolver::run() {
       result.status = SolverStatus::kIterationLimit;
       break;
     }
+    if (opt_.stop && iter % 1000 == 0 && opt_.stop()) {
+      result.status = SolverStatus::kStopped;
+      break;
+    }
     if (--counter == 0) {
       counter = std::min(n_, early ? kWarmShrinkEvery : 1000);
       if (opt_.shrinking) shrink();
@@ -504,7 +508,8 @@ std::string SolverOptions::validate() const {
 
 std::string SolverResult::report() const {
   std::ostringstream msg;
-  msg << (status == SolverStatus::kOptimal ? "optimal" : "iteration limit") << ", iterations "
+  msg << (status == SolverStatus::kOptimal ? "optimal" : status == SolverStatus::kStopped ? "stopped" : "iteration limit")
+      << ", iterations "
       << iterations << ", objective " << objective << ", bias " << bias << ", violation "
       << violation << ", SV " << support_vectors << " (bounded " << bounded_support_vectors
       << "), cache hits " << cache_hits << " misses " << cache_misses << ", kernel entries "

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,11 +38,14 @@ struct SolverOptions {
   // e.g. one-versus-rest across classes.
   int threads = 1;
   int parallel_min_samples = 8192;
+  // Polled every 1,000 iterations when set; a solve it ends reports SolverStatus::kStopped with the
+  // iterate it reached (a time limit's hook: one solve of 20,000 samples can take seconds).
+  std::function<bool()> stop;
 
   std::string validate() const;  // "" when OK, else what is wrong
 };
 
-enum class SolverStatus { kOptimal, kIterationLimit };
+enum class SolverStatus { kOptimal, kIterationLimit, kStopped };
 
 struct SolverResult {
   Eigen::VectorXd alpha;  // dual variables, original sample order

@@ -322,8 +322,9 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         if (options.simplify && record.result.solved()) {
           const auto t1 = Clock::now();
           if (options.simplify_svm) {
+            // --time-limit bounds the smoothing of each path as it bounds each solve.
             auto smoothed = planners::smoothPathBySvm(record.result.path, world.checker, world.certifier,
-                                                      world.space, smoothing_options, &smoothing);
+                                                      world.space, smoothing_options, &smoothing, limit().asFunction());
             if (!smoothed.smoothed)
               log << "  " << runs.planner << " seed " << seed << ": path kept (" << smoothed.why << ")\n";
             record.result.path = std::move(smoothed.path);

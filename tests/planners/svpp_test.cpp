@@ -309,6 +309,21 @@ TEST(SvppTest, UnsetLengthsScaleWithTheSpaceSoAScaledProblemGetsTheScaledPath) {
   }
 }
 
+// Merging is quadratic in overlapping obstacles (3,000 took 10 s): a stop ends it, once a part.
+TEST(SvppTest, AStopEndsTheMergingOfOverlappingObstacles) {
+  std::vector<ConvexPart> parts;
+  for (int i = 0; i < 50; ++i) {
+    Eigen::Matrix2Xd v(2, 4);
+    const double x = 0.01 * i;
+    v << x, x + 0.2, x + 0.2, x, 0, 0, 0.2, 0.2;
+    parts.push_back(polygonPart(v, i + 1));
+  }
+  EXPECT_EQ(mergeObstacles(parts).size(), 1u);  // one chain of overlapping squares
+  int polls = 0;
+  EXPECT_TRUE(mergeObstacles(parts, [&] { return ++polls > 10; }).empty());
+  EXPECT_EQ(polls, 11);
+}
+
 TEST(SvppTest, TheTimeLimitStopsASurfaceFollowing) {
   const CertifiedWorld w(kSymmetric);
   // Steps of 1e-5: up to 480,000 a pattern. The limit fires at its 100th poll, within the first

@@ -146,6 +146,21 @@ TEST(Solver, ThreadsGiveTheSameSolution) {
   EXPECT_THROW(solveBinary(p.X, y, C, k, two), std::invalid_argument);
 }
 
+// A time limit's hook: polled every 1,000 iterations, it ends the solve with the iterate reached.
+TEST(Solver, AStopEndsTheSolve) {
+  const auto p = makeBallProblem(6, 3000, 3, 17);  // as SolutionSatisfiesKktToEps: thousands of iterations
+  const Eigen::VectorXd C = Eigen::VectorXd::Constant(3000, kC);
+  SolverOptions opt;
+  const SolverResult full = solveBinary(p.X, p.binary(), C, Kernel::rbfFromSigma(sigmaFor(p)), opt);
+  ASSERT_GT(full.iterations, 1000) << "test premise: the solve outlasts the first poll after 0";
+  int polls = 0;
+  opt.stop = [&] { return ++polls > 1; };
+  const SolverResult r = solveBinary(p.X, p.binary(), C, Kernel::rbfFromSigma(sigmaFor(p)), opt);
+  EXPECT_EQ(r.status, SolverStatus::kStopped) << r.report();
+  EXPECT_EQ(r.iterations, 1000);  // polls at iterations 0 (false) and 1000 (true)
+  EXPECT_EQ(polls, 2);
+}
+
 TEST(Solver, IterationLimitIsReported) {
   const auto p = makeBallProblem(2, 2000, 3, 3);
   SolverOptions opt;
