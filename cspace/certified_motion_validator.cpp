@@ -9,7 +9,7 @@ namespace svmp::cspace {
 
 CertifiedMotionValidator::CertifiedMotionValidator(const CollisionChecker& exact, const ConfigurationSpace& space,
                                                    double resolution)
-    : exact_(exact), space_(space), resolution_(resolution), tolerance_(1e-6 * resolution) {
+    : exact_(exact), space_(space), resolution_(resolution), tolerance_(toleranceFor(resolution)) {
   if (!std::isfinite(resolution) || !(resolution > 0))
     throw std::invalid_argument("certified motion validator: resolution must be positive, got " +
                                 std::to_string(resolution));

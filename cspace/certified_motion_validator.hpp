@@ -50,6 +50,8 @@ class CertifiedMotionValidator final : public MotionValidator {
   const ConfigurationSpace& space() const override { return space_; }
   double resolution() const override { return resolution_; }
   double tolerance() const { return tolerance_; }
+  // Closer than this to contact nothing is proven free: a start or goal within it has no provable path.
+  static double toleranceFor(double resolution) { return 1e-6 * resolution; }
   std::uint64_t distanceQueries() const override { return distances_.load(std::memory_order_relaxed); }
 
  private:

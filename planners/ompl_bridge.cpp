@@ -154,7 +154,11 @@ class OmplPlanner final : public Planner {
     if (status == ob::PlannerStatus::EXACT_SOLUTION) {
       auto* path = pdef->getSolutionPath()->as<og::PathGeometric>();
       for (size_t i = 0; i < path->getStateCount(); ++i)
-        result.path.push_back(ompl_planners::toConfiguration(path->getState(i), scale));
+        result.path.push_back(ompl_planners::toConfiguration(path->getState(i), context_.space));
+      // The query's own ends, not their round trip through OMPL's scaled states (one unit in the last
+      // place apart where the metric weights are not 1).
+      result.path.front() = query.start;
+      result.path.back() = query.goal;
       result.status = PlanStatus::kSolved;
       certify(result, seed, until);  // a repair of its path keeps within the planner's own limit
     } else {

@@ -23,10 +23,11 @@ ob::PlannerStatus omplStatus(planners::PlanStatus status) {
   return ob::PlannerStatus::ABORT;
 }
 
-Eigen::VectorXd toConfiguration(const ob::State* state, const Eigen::VectorXd& scale) {
+Eigen::VectorXd toConfiguration(const ob::State* state, const cspace::ConfigurationSpace& space) {
   const auto* v = state->as<ob::RealVectorStateSpace::StateType>();
+  const Eigen::VectorXd& scale = space.metricScale();
   Eigen::VectorXd q(scale.size());
-  for (int i = 0; i < q.size(); ++i) q[i] = v->values[i] / scale[i];
+  for (int i = 0; i < q.size(); ++i) q[i] = std::clamp(v->values[i] / scale[i], space.lower()[i], space.upper()[i]);
   return q;
 }
 
@@ -44,11 +45,11 @@ ContextValidityChecker::ContextValidityChecker(const ob::SpaceInformationPtr& si
 }
 
 bool ContextValidityChecker::isValid(const ob::State* state) const {
-  return context_.checker.isValid(toConfiguration(state, context_.space.metricScale()));
+  return context_.checker.isValid(toConfiguration(state, context_.space));
 }
 
 double ContextValidityChecker::clearance(const ob::State* state) const {
-  return context_.checker.clearance(toConfiguration(state, context_.space.metricScale()));
+  return context_.checker.clearance(toConfiguration(state, context_.space));
 }
 
 ContextMotionValidator::ContextMotionValidator(const ob::SpaceInformationPtr& si,
@@ -57,17 +58,15 @@ ContextMotionValidator::ContextMotionValidator(const ob::SpaceInformationPtr& si
     : ob::MotionValidator(si), context_(context), owner_(std::move(owner)) {}
 
 bool ContextMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
-  const Eigen::VectorXd& scale = context_.space.metricScale();
-  const bool ok = context_.validator.isValidIncludingEnd(toConfiguration(s1, scale), toConfiguration(s2, scale));
+  const bool ok = context_.validator.isValidIncludingEnd(toConfiguration(s1, context_.space), toConfiguration(s2, context_.space));
   ok ? ++valid_ : ++invalid_;
   return ok;
 }
 
 bool ContextMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                          std::pair<ob::State*, double>& last_valid) const {
-  const Eigen::VectorXd& scale = context_.space.metricScale();
   double t = 0;
-  if (context_.validator.checkMotion(toConfiguration(s1, scale), toConfiguration(s2, scale), t)) {
+  if (context_.validator.checkMotion(toConfiguration(s1, context_.space), toConfiguration(s2, context_.space), t)) {
     ++valid_;
     return true;
   }

@@ -29,8 +29,11 @@ namespace ob = ::ompl::base;
 // kTimeout TIMEOUT, kInvalidStart / kInvalidGoal INVALID_START / INVALID_GOAL, otherwise ABORT.
 ob::PlannerStatus omplStatus(planners::PlanStatus status);
 
-// A RealVectorStateSpace state, divided by `scale` coordinate by coordinate.
-Eigen::VectorXd toConfiguration(const ob::State* state, const Eigen::VectorXd& scale);
+// A RealVectorStateSpace state as a configuration of `space`: divided by its metric scale coordinate by
+// coordinate, and kept within its joint limits, which the round trip q * s / s can pass by one unit in
+// the last place (2.8973 * sqrt(2) / sqrt(2) = 2.8973000000000004, beyond the Panda's limit: a valid
+// goal became invalid in OMPL, and FMT* then dereferenced a null goal).
+Eigen::VectorXd toConfiguration(const ob::State* state, const cspace::ConfigurationSpace& space);
 // Writes q * scale into a RealVectorStateSpace state.
 void toState(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::VectorXd& scale, ob::State* state);
 

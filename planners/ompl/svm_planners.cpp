@@ -152,8 +152,8 @@ ob::PlannerStatus SvmOmplPlannerBase::solve(const ob::PlannerTerminationConditio
   const auto* goal = dynamic_cast<const ob::GoalState*>(pdef_->getGoal().get());
   if (!goal) return ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE;
   if (pdef_->getStartStateCount() == 0) return ob::PlannerStatus::INVALID_START;
-  const Eigen::VectorXd& scale = context_->space.metricScale();
-  const cspace::Query query{toConfiguration(pdef_->getStartState(0), scale), toConfiguration(goal->getState(), scale), {}};
+  const cspace::Query query{toConfiguration(pdef_->getStartState(0), context_->space),
+                            toConfiguration(goal->getState(), context_->space), {}};
   // OMPL's condition caches its answer in a plain bool; our planners poll from OpenMP threads.
   std::mutex ptc_mutex;
   const planners::Termination stop = planners::Termination::when([&ptc, &ptc_mutex] {
@@ -186,7 +186,7 @@ ob::PlannerStatus SvmOmplPlannerBase::solve(const ob::PlannerTerminationConditio
   auto path = std::make_shared<og::PathGeometric>(si_);
   ob::State* state = si_->allocState();
   for (const Eigen::VectorXd& q : last_.path) {
-    toState(q, scale, state);
+    toState(q, context_->space.metricScale(), state);
     path->append(state);
   }
   si_->freeState(state);

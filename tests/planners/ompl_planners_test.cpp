@@ -48,7 +48,7 @@ struct OmplRun {
   std::vector<Eigen::VectorXd> path() const {
     std::vector<Eigen::VectorXd> q;
     for (const ob::State* s : setup->getSolutionPath().getStates())
-      q.push_back(toConfiguration(s, world->context().space.metricScale()));
+      q.push_back(toConfiguration(s, world->context().space));
     return q;
   }
   std::unique_ptr<planners::test::World> recheck;  // the scenario and an independent FCL checker

@@ -4,6 +4,8 @@
 // repaired around it; without a repairable stretch the query fails instead of returning a path.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/fastron_checker.hpp"
 #include "planners/verify_repair.hpp"
@@ -118,6 +120,32 @@ TEST(VerifyRepair, AStretchThatCannotBeRepairedFailsTheQuery) {
   EXPECT_FALSE(pw.repairer.verifyAndRepair(path, "ompl-rrtconnect", 3, Termination::when([] { return true; }), stats, why));
   EXPECT_NE(why.find("repair of waypoints 0 to 2 with ompl-rrtconnect failed"), std::string::npos) << why;
   EXPECT_EQ(path.size(), 3u);  // untouched
+}
+
+// OMPL plans on q * sqrt(w). With weights other than 1, a goal at a joint limit came back one unit in
+// the last place beyond it (2.8973 * sqrt(2) / sqrt(2) = 2.8973000000000004): OMPL's planners called
+// the goal invalid and FMT* crashed on it; every OMPL path also began and ended 1 ulp off the query.
+TEST(VerifyRepair, OmplPlansFromAndToTheQuerysOwnEndsAtTheJointLimits) {
+  const auto w = test::makeWorld(R"(robot: {type: planar_arm, lengths: [1, 1], widths: 0.05,
+  limits: {lower: [-2.8973, -2.8973], upper: [2.8973, 2.8973]}}
+obstacles: [{shape: box, size: [0.2, 0.2, 1], position: [5, 5, 0]}]
+start: [-0.45961961305550414, -0.1349988594824283]
+goal: [2.8973, -1.3408615646987703]
+resolution: 0.01
+metric_weights: [2, 0.5]
+)");
+  ASSERT_NE(w->query().goal[0] * std::sqrt(2.0) / std::sqrt(2.0), w->query().goal[0]) << "test premise";
+  const cspace::CertifiedMotionValidator certifier(w->checker, w->space, w->scenario.resolution);
+  const PlanningContext repair_context{w->space, w->checker, certifier, 1, &certifier};
+  const PathRepairer repairer(repair_context);
+  const PlanningContext context{w->space, w->checker, w->validator, 1, &certifier, &repairer};
+  for (const char* name : {"ompl-rrtconnect", "ompl-prm", "ompl-fmt"}) {
+    const PlanResult r = makePlanner(name, context, cspace::ParameterSet())->solve(w->query(), 1, Termination::after(10));
+    ASSERT_TRUE(r.solved()) << name << ": " << planStatusName(r.status) << " " << r.message;
+    EXPECT_EQ(r.path.front(), w->query().start) << name;
+    EXPECT_EQ(r.path.back(), w->query().goal) << name;
+    EXPECT_TRUE(test::pathIsValid(*w, r.path)) << name;
+  }
 }
 
 }  // namespace
