@@ -1,6 +1,6 @@
 // The README's example of SVMP as an OMPL planner (planners/ompl/svm_planners.hpp): a scenario file in
 // OMPL's SimpleSetup with our checker, SVMP with the file's parameters and one set through OMPL's
-// ParamSet, the certified path printed as OMPL's matrix. usage: svmp-ompl-example [SCENARIO]
+// ParamSet, the certified path printed one configuration a line. usage: svmp-ompl-example [SCENARIO]
 #include <iostream>
 
 #include "cspace/scenario/scenario.hpp"
@@ -18,7 +18,11 @@ int main(int argc, char** argv) try {
     std::cerr << "svmp-ompl-example: no path: " << svmp->lastResult().message << "\n";
     return 1;
   }
-  setup->getSolutionPath().printAsMatrix(std::cout);  // every segment certified collision-free
+  // Every segment certified collision-free. The configurations, one a line: OMPL's own states are
+  // q * sqrt(w) where the scenario weighs its joints (metric_weights), so printAsMatrix would show those.
+  std::cout.precision(17);
+  for (const auto& q : svmp->lastResult().path)
+    for (int i = 0; i < q.size(); ++i) std::cout << q[i] << (i + 1 < q.size() ? " " : "\n");
   std::cerr << svmp->lastResult().collision_checks << " collision checks, " << svmp->lastResult().milestones
             << " milestones\n";
 } catch (const std::exception& e) {
