@@ -7,48 +7,18 @@
 #include "cspace/scenario/scenario.hpp"
 #include "robots/dh_arm.hpp"
 #include "robots/planar_arm.hpp"
+#include "tests/cspace/hostile_inputs.hpp"
 
 namespace svmp::cspace {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-const char* kPointScenario = R"(
-name: two_boxes
-robot: {type: point, bounds: {lower: [0, 0], upper: [10, 10]}}
-obstacles:
-  - {name: lower, shape: box, size: [4, 6, 1], position: [5, 3, 0]}
-  - {shape: sphere, radius: 0.5, position: [1, 1], virtual: true, weight: 2}
-start: [1, 5]
-goal: [9, 5]
-witness: [[2.5, 6.15], [7.5, 6.15]]
-resolution: 0.05
-metric_weights: [1, 2]
-planners:
-  svmp: {sigma: 0.5, k: 10}
-)";
+using hostile::errorOf;
+using hostile::kPoint;
 
 // Replaces the first occurrence of `from` in the valid point scenario.
-std::string pointScenarioWith(const std::string& from, const std::string& to) {
-  std::string text = kPointScenario;
-  const size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
-
-// Parses `text` and returns the ScenarioError message (fails the test when nothing is thrown).
-std::string errorOf(const std::string& text) {
-  try {
-    parseScenario(text, "test.yaml");
-  } catch (const ScenarioError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected ScenarioError, got another exception: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected ScenarioError for:\n" << text;
-  return "";
-}
+std::string pointScenarioWith(const std::string& from, const std::string& to) { return hostile::with(kPoint, from, to); }
 
 void expectErrorNames(const std::string& text, const std::vector<std::string>& parts) {
   const std::string message = errorOf(text);
@@ -57,7 +27,7 @@ void expectErrorNames(const std::string& text, const std::vector<std::string>& p
 }
 
 TEST(ScenarioTest, ParsesAPointRobotScenario) {
-  const Scenario s = parseScenario(kPointScenario, "test.yaml");
+  const Scenario s = parseScenario(kPoint, "test.yaml");
   EXPECT_EQ(s.name, "two_boxes");
   EXPECT_EQ(s.robot->name(), "point2d");
   ASSERT_EQ(s.environment->size(), 2);
