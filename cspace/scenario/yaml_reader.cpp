@@ -135,7 +135,7 @@ size_t invalidUtf8(const std::string& text) {
     else if (c >= 0xE0 && c <= 0xEF) n = 2, lo = c == 0xE0 ? 0xA0 : 0x80, hi = c == 0xED ? 0x9F : 0xBF;
     else if (c >= 0xF0 && c <= 0xF4) n = 3, lo = c == 0xF0 ? 0x90 : 0x80, hi = c == 0xF4 ? 0x8F : 0xBF;
     else return i;
-    if (i + n >= text.size() + (n == 0 ? 1 : 0) && n > 0) return i;
+    if (i + n >= text.size() && n > 0) return i;  // the sequence runs past the end
     for (size_t k = 1; k <= n; ++k) {
       const unsigned b = t[i + k];
       if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return i;
