@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
@@ -39,6 +40,13 @@ std::string safeFileName(const std::string& text) {
   }
   const size_t first = out.find_first_not_of('.');
   out = first == std::string::npos ? "" : out.substr(first);
+  // File systems take names of 255 bytes; the caller adds a suffix. A long name keeps its first 100
+  // characters and a hash of the whole, so two long names still differ.
+  if (out.size() > 120) {
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(std::hash<std::string>{}(text)));
+    out = out.substr(0, 100) + "_" + hash;
+  }
   return out.empty() ? "_" : out;
 }
 
@@ -91,8 +99,17 @@ std::string svgNumber(double v) {
 
 std::string escapeXml(const std::string& text) {
   std::string out;
-  for (char ch : text) {
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
     const bool control = static_cast<unsigned char>(ch) < 0x20 && ch != '\t' && ch != '\n' && ch != '\r';
+    // U+FFFE and U+FFFF (EF BF BE / BF): like the control characters, not characters of XML 1.0.
+    const bool nonchar = text.compare(i, 2, "\xEF\xBF") == 0 && i + 2 < text.size() &&
+                         (text[i + 2] == '\xBE' || text[i + 2] == '\xBF');
+    if (nonchar) {
+      out += '?';
+      i += 2;
+      continue;
+    }
     // XML 1.0 has no way to write the other control characters, not even as references.
     out += ch == '&' ? "&amp;" : ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : control ? "?" : std::string(1, ch);
   }

@@ -10,12 +10,14 @@ namespace svmp::experiments {
 std::string jsonString(const std::string& text);
 
 // `text` with every character outside [A-Za-z0-9._-] replaced by '_' and leading dots removed, so
-// "../../x" cannot name a file outside the directory it is joined to. Never empty.
+// "../../x" cannot name a file outside the directory it is joined to; past 120 characters, the first
+// 100 and a hash of the whole. Never empty.
 std::string safeFileName(const std::string& text);
 
 // A coordinate or length in SVG output: two decimals.
 std::string svgNumber(double v);
-// `text` with &, < and > escaped for XML character data.
+// `text` with &, < and > escaped for XML character data, and what XML 1.0 cannot hold (control
+// characters, U+FFFE, U+FFFF) as '?'.
 std::string escapeXml(const std::string& text);
 
 // Mean, sample standard deviation and median of a set of numbers (all 0 when empty).

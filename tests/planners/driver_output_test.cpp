@@ -312,6 +312,8 @@ TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
 TEST(DriverOutput, SvgTextIsWellFormedXml) {
   EXPECT_EQ(escapeXml("a<b>&c"), "a&lt;b&gt;&amp;c");
   EXPECT_EQ(escapeXml(std::string("fig\x01\x1f\tend\n")), "fig??\tend\n");
+  // U+FFFE and U+FFFF are valid UTF-8 (a scenario may name them) but not XML 1.0 characters.
+  EXPECT_EQ(escapeXml("a\xEF\xBF\xBE" "b\xEF\xBF\xBF" "c\xEF\xBF\xBD"), "a?b?c\xEF\xBF\xBD");
 }
 
 // A build that fails fails every query of its run, and the first query's record keeps the build's
@@ -382,6 +384,12 @@ TEST(DriverOutput, FileNamesCannotLeaveTheirDirectory) {
   EXPECT_EQ(safeFileName("../../x"), "_.._x");
   EXPECT_EQ(safeFileName("a/b\\c d"), "a_b_c_d");
   EXPECT_EQ(safeFileName(".."), "_");
+  // A name of any length (scenario names are free text) stays within a file name's 255 bytes, and
+  // two long names that share their first 100 characters stay apart.
+  const std::string a = safeFileName(std::string(300, 'L')), b = safeFileName(std::string(300, 'L') + "x");
+  EXPECT_LE(a.size(), 120u);
+  EXPECT_NE(a, b);
+  EXPECT_EQ(a.substr(0, 100), std::string(100, 'L'));
   EXPECT_EQ(jsonString("a\"b\\c\n\x01"), "\"a\\\"b\\\\c\\n\\u0001\"");
 }
 
