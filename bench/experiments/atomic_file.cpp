@@ -27,6 +27,12 @@ void probeWrite(const std::string& flag, const std::string& what, const std::str
   std::remove(probe.c_str());
 }
 
+void createDirectories(const std::string& flag, const std::string& dir) {
+  std::error_code error;
+  if (!std::filesystem::create_directories(dir, error) && error)
+    throw std::runtime_error("flag " + flag + ": cannot create directory '" + dir + "': " + error.message());
+}
+
 }  // namespace
 
 void writeFileAtomically(const std::string& file, const std::string& text) {
@@ -45,16 +51,15 @@ void writeFileAtomically(const std::string& file, const std::string& text) {
 void checkWritable(const std::string& flag, const std::string& file) {
   if (std::filesystem::is_directory(file))
     throw std::runtime_error("flag " + flag + ": cannot write '" + file + "': it is a directory");
-  // Its folder is made, as --svg's is (the docs write into results/ subfolders).
+  // Its folder is made, as --svg's is (the docs write into results/ subfolders); the file's own
+  // probe below tries the folder too.
   if (const std::filesystem::path parent = std::filesystem::path(file).parent_path(); !parent.empty())
-    makeDirectory(flag, parent.string());
+    createDirectories(flag, parent.string());
   probeWrite(flag, "'" + file + "'", temporaryBeside(file));
 }
 
 void makeDirectory(const std::string& flag, const std::string& dir) {
-  std::error_code error;
-  if (!std::filesystem::create_directories(dir, error) && error)
-    throw std::runtime_error("flag " + flag + ": cannot create directory '" + dir + "': " + error.message());
+  createDirectories(flag, dir);
   probeWrite(flag, "into directory '" + dir + "'", (std::filesystem::path(dir) / temporaryBeside(".svmp-probe")).string());
 }
 

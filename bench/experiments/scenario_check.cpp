@@ -26,11 +26,10 @@ std::string describe(const cspace::CollisionChecker& checker, int hit, const Eig
   return what;
 }
 
-// "" when a free q is far enough from contact for a path from it to be proven; else why not.
-std::string tooCloseToProve(const cspace::Scenario& scenario, const cspace::CollisionChecker& checker,
-                            const Eigen::VectorXd& q) {
+// "" when a free configuration `clearance` from contact is far enough for a path from it to be
+// proven; else why not.
+std::string tooCloseToProve(const cspace::Scenario& scenario, double clearance) {
   const double tolerance = cspace::CertifiedMotionValidator::toleranceFor(scenario.resolution);
-  const double clearance = checker.clearance(q);
   if (clearance > tolerance) return "";
   std::ostringstream why;
   why << "free but " << clearance << " from an obstacle, within the certifier's tolerance " << tolerance
@@ -97,10 +96,11 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
     const auto& q = scenario.queries[i];
     for (const auto& [label, config] : {std::pair{"start", &q.start}, std::pair{"goal ", &q.goal}}) {
       const int hit = checker.check(*config);
-      const std::string too_close = hit == cspace::kFree ? tooCloseToProve(scenario, checker, *config) : "";
+      const double clearance = hit == cspace::kFree ? checker.clearance(*config) : 0;
+      const std::string too_close = hit == cspace::kFree ? tooCloseToProve(scenario, clearance) : "";
       ok &= hit == cspace::kFree && too_close.empty();
       out << "query " << i << "    " << label << " " << format(*config) << "  " << describe(checker, hit, *config);
-      if (hit == cspace::kFree) out << ", clearance " << std::setprecision(4) << checker.clearance(*config);
+      if (hit == cspace::kFree) out << ", clearance " << std::setprecision(4) << clearance;
       if (!too_close.empty()) out << "\nerror      the " << (label[0] == 's' ? "start" : "goal") << " is " << too_close;
       out << "\n";
     }
@@ -135,14 +135,13 @@ void requireValidConfigurations(const cspace::Scenario& scenario) {
     const auto& q = scenario.queries[i];
     for (const auto& [key, config] : {std::pair{"start", &q.start}, std::pair{"goal", &q.goal}}) {
       const int hit = checker.check(*config);
+      const std::string why = hit != cspace::kFree ? describe(checker, hit, *config)
+                                                   : tooCloseToProve(scenario, checker.clearance(*config));
+      if (why.empty()) continue;
       const std::string field =
           scenario.queries_listed ? "queries[" + std::to_string(i) + "]." + key : std::string(key);
-      if (hit != cspace::kFree)
-        throw cspace::ScenarioError(scenario.path + ": field '" + field + "': configuration " + format(*config) +
-                                    " is " + describe(checker, hit, *config));
-      if (const std::string why = tooCloseToProve(scenario, checker, *config); !why.empty())
-        throw cspace::ScenarioError(scenario.path + ": field '" + field + "': configuration " + format(*config) +
-                                    " is " + why);
+      throw cspace::ScenarioError(scenario.path + ": field '" + field + "': configuration " + format(*config) +
+                                  " is " + why);
     }
   }
   const auto& obstacles = scenario.environment->obstacles();
