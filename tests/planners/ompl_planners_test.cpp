@@ -86,11 +86,11 @@ TEST(OmplPlanners, EachSolvesThroughSimpleSetupWithACertifiedPath) {
 TEST(OmplPlanners, AnExpiredConditionStopsThemAtOnce) {
   for (const Case& c : kCases) {
     OmplRun run(c.scenario, c.planner);
-    const auto t0 = std::chrono::steady_clock::now();
+    // Measured in work, not milliseconds (the machine is shared): at most one polling interval.
+    const std::uint64_t before = run.world->context().checker.collisionChecks();
     const ob::PlannerStatus status = run.planner->solve(ob::PlannerTerminationCondition([] { return true; }));
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(status, ob::PlannerStatus::TIMEOUT) << c.planner << ": " << status.asString();
-    EXPECT_LT(ms, 200.0) << c.planner;
+    EXPECT_LE(run.world->context().checker.collisionChecks() - before, 1000u) << c.planner;
     EXPECT_FALSE(run.setup->haveSolutionPath()) << c.planner;
   }
 }

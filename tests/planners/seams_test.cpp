@@ -120,8 +120,11 @@ TEST(Seams, SwappedValidityCheckerIsTheOneEveryPlannerCalls) {
   }
 }
 
-TEST(Seams, OneMillisecondLimitEndsEveryPlannerWithTimeout) {
-  // Large enough that no planner finishes in a millisecond.
+// A stop is honoured within a bounded amount of work, measured in collision checks rather than
+// milliseconds (a shared machine makes wall-clock bounds flaky): the condition fires once the checker
+// has counted 1,000 checks, and the planner must return soon after (without it these runs take
+// millions of checks).
+TEST(Seams, AStopEndsEveryPlannerWithTimeoutWithinBoundedWork) {
   auto w = makeWorld(gapScenario(0.01,
                                  "  svmp: {sigma: 0.03, step: 0.01, samples_per_tree: 20000}\n"
                                  "  prm: {samples: 2000000}\n"
@@ -130,14 +133,14 @@ TEST(Seams, OneMillisecondLimitEndsEveryPlannerWithTimeout) {
     if (name == "ompl-prm" && plannerNames().end() == std::find(plannerNames().begin(), plannerNames().end(), name))
       continue;
     auto planner = w->planner(name);
-    const auto t0 = Clock::now();
-    const PlanResult r = planner->solve(w->query(), 1, Termination::after(1e-3));
-    const double ms = msSince(t0);
+    const std::uint64_t before = w->checker.collisionChecks();
+    const PlanResult r = planner->solve(
+        w->query(), 1, Termination::when([&] { return w->checker.collisionChecks() - before >= 1000; }));
     EXPECT_EQ(r.status, PlanStatus::kTimeout) << name << ": " << planStatusName(r.status) << " " << r.message;
-    // A small multiple of the limit; generous because the machine is shared (not a speed assertion:
-    // without the limit these runs take seconds).
-    EXPECT_LT(ms, 250.0) << name;
-    std::printf("[ info     ] %s stopped %.1f ms after a 1 ms limit\n", name.c_str(), ms);
+    EXPECT_GE(r.collision_checks, 1000u) << name;
+    EXPECT_LT(r.collision_checks, 6000u) << name;
+    std::printf("[ info     ] %s stopped after %llu checks\n", name.c_str(),
+                static_cast<unsigned long long>(r.collision_checks));
   }
 }
 
@@ -172,6 +175,9 @@ TEST(Seams, BuiltRoadmapAnswersManyQueries) {
       ASSERT_TRUE(r.solved()) << name << ": " << r.message;
       EXPECT_EQ((r.path.front() - q.start).norm(), 0.0);
       EXPECT_EQ((r.path.back() - q.goal).norm(), 0.0);
+      // Sampled at the resolution (no certifier here): free up to what checks that far apart can miss.
+      for (size_t i = 0; i + 1 < r.path.size(); ++i)
+        EXPECT_TRUE(test::segmentIsValid(*w, r.path[i], r.path[i + 1], w->scenario.resolution)) << name;
       // A query costs a small part of the build: it connects two configurations.
       EXPECT_LT(r.collision_checks, built.collision_checks) << name;
     }
