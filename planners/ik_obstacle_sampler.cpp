@@ -57,6 +57,23 @@ double linkPointCount(const robots::PlanarArm* planar, const robots::DhArm* dh, 
   return 2 + steps(std::abs(spec.rows.size() > 3 ? spec.rows[3].d : spec.flange.d), res);
 }
 
+// The IK solvers return angles in (-pi, pi]; a joint whose limits lie elsewhere (e.g. [0, 2 pi])
+// reaches the same pose at q + 2 pi k. Moves each joint outside its limits, or with a range wider than a
+// turn, to such a copy within its limits, drawn uniformly when the range holds several; false when a
+// joint has none.
+bool turnIntoLimits(Eigen::VectorXd& q, const robots::Robot& robot, cspace::Rng& rng) {
+  for (int j = 0; j < q.size(); ++j) {
+    const double lower = robot.lowerLimits()[j], upper = robot.upperLimits()[j];
+    if (q[j] >= lower && q[j] <= upper && upper - lower <= 2 * kPi * (1 + 1e-12)) continue;
+    const long first = static_cast<long>(std::ceil((lower - q[j]) / (2 * kPi)));
+    const long last = static_cast<long>(std::floor((upper - q[j]) / (2 * kPi)));
+    if (first > last) return false;
+    const long k = first == last ? first : std::uniform_int_distribution<long>(first, last)(rng);
+    q[j] += 2 * kPi * static_cast<double>(k);
+  }
+  return robot.withinLimits(q);  // rounding at a limit
+}
+
 }  // namespace
 
 std::string IkSamplingOptions::validate() const {
@@ -188,8 +205,8 @@ IkSamples sampleObstaclesByIk(const cspace::ValidityChecker& checker,
     ++found;
   };
   auto keep = [&](const std::vector<Eigen::VectorXd>& solutions, int region) {
-    for (const auto& q : solutions)
-      if (robot.withinLimits(q)) take(q, region);
+    for (Eigen::VectorXd q : solutions)
+      if (turnIntoLimits(q, robot, rng)) take(q, region);
   };
   Eigen::VectorXd free_joints(robot.dof());
   for (const auto& obstacle : checker.environment().obstacles()) {

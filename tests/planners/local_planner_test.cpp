@@ -3,6 +3,9 @@
 // Fig. 2.6 scenario with a collision-free path, and a trap ahead of the start is a local minimum.
 #include <gtest/gtest.h>
 
+#include <numbers>
+#include <sstream>
+
 #include <iostream>
 #include <map>
 #include <random>
@@ -63,6 +66,52 @@ TEST(IkObstacleSampler, PlanarArmSamplesTouchTheirObstacle) {
 
 TEST(IkObstacleSampler, CrsF3SamplesTouchTheirObstacle) {
   expectSamplesTouchTheirObstacle("thesis_fig2_10.yaml", 1e-6);
+}
+
+// The IK solvers answer in (-pi, pi]; limits elsewhere hold the same poses a turn away. With joint 1's
+// limits moved a turn up ([pi, 3 pi]) the samples are the same poses (every one touches its obstacle,
+// as many obstacle samples), and with a range of two turns ([-2 pi, 2 pi]) both copies are sampled.
+TEST(IkObstacleSampler, JointLimitsATurnAwayGetTheSamePoses) {
+  const std::string original = readScenario("thesis_fig2_6.yaml");
+  auto withLimits = [&](const std::string& lower, const std::string& upper, double q1_shift) {
+    std::string yaml = original;
+    auto number = [](double v) { std::ostringstream o; o.precision(17); o << v; return o.str(); };
+    auto replace = [&](const std::string& from, const std::string& to) { yaml.replace(yaml.find(from), from.size(), to); };
+    replace("limits: {lower: [-pi, -2.5], upper: [pi, 2.5]}",
+            "limits: {lower: [" + lower + ", -2.5], upper: [" + upper + ", 2.5]}");
+    replace("start: [-1.0,", "start: [" + number(q1_shift - 1.0) + ",");
+    replace("goal: [1.0,", "goal: [" + number(q1_shift + 1.0) + ",");
+    replace("witness:", "#");
+    return makeWorld(yaml);
+  };
+  auto obstacleSamples = [](const test::World& w, const IkSamples& s, double shift) {
+    int n = 0;
+    for (int i = 0; i < s.size(); ++i) {
+      if (s.regions[i] == kBoundaryRegion) continue;
+      ++n;
+      Eigen::VectorXd q = s.points.col(i);
+      EXPECT_TRUE(w.checker.hits(q, s.regions[i]) || w.checker.clearance(q) <= 1e-6) << q.transpose();
+      q[0] -= shift;  // the same pose in [-pi, pi]
+      EXPECT_TRUE(w.checker.hits(q, s.regions[i]) || w.checker.clearance(q) <= 1e-6) << q.transpose();
+    }
+    return n;
+  };
+  IkSamplingOptions options;
+  options.max_samples = 1 << 20;  // keep every sample: the counts are comparable
+  auto base = makeWorld(original);
+  const int expected = obstacleSamples(*base, sampleObstaclesByIk(base->checker, base->space, options, 3), 0);
+  ASSERT_GT(expected, 100);
+  auto up = withLimits("pi", "3pi", 2 * std::numbers::pi);
+  const IkSamples shifted = sampleObstaclesByIk(up->checker, up->space, options, 3);
+  EXPECT_NEAR(obstacleSamples(*up, shifted, 2 * std::numbers::pi), expected, 0.02 * expected);
+  for (int i = 0; i < shifted.size(); ++i) EXPECT_GE(shifted.points(0, i), std::numbers::pi - 1e-12);
+  auto wide = withLimits("-2pi", "2pi", 0);
+  const IkSamples both = sampleObstaclesByIk(wide->checker, wide->space, options, 3);
+  int low = 0, high = 0;
+  for (int i = 0; i < both.size(); ++i)
+    if (both.regions[i] != kBoundaryRegion) (both.points(0, i) < 0 ? low : high)++;
+  EXPECT_GT(low, expected / 4);
+  EXPECT_GT(high, expected / 4);
 }
 
 // Resolutions of 1e-6 m would pair 1e12 link and obstacle points (5.4 GB before the thinning, then
