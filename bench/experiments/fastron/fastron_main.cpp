@@ -117,9 +117,16 @@ int main(int argc, char** argv) {
   }
   try {
     const cspace::Scenario scenario = cspace::loadScenario(flags.scenario);
-    const auto fk = cspace::FastronCheckerOptions::fromParameters("fastron-fk", flags.params["fastron-fk"]);
-    const auto rbf = cspace::FastronCheckerOptions::fromParameters("fastron-rbf", flags.params["fastron-rbf"]);
-    for (auto& [name, p] : flags.params) p.requireAllUsed();
+    // The scenario's fastron-fk / fastron-rbf sections, then --set over them (as svmp-plan --checker).
+    std::map<std::string, cspace::ParameterSet> params;
+    for (const auto& [name, set] : flags.params) {
+      params[name] = scenario.paramsFor(name);
+      for (const auto& [key, value] : set.values())
+        params[name].set(key, value, "flag --set " + name + "." + key + "=" + value);
+    }
+    const auto fk = cspace::FastronCheckerOptions::fromParameters("fastron-fk", params["fastron-fk"]);
+    const auto rbf = cspace::FastronCheckerOptions::fromParameters("fastron-rbf", params["fastron-rbf"]);
+    for (const auto& [name, p] : params) p.requireAllUsed();
     const bool plans = flags.experiment == "all" || flags.experiment == "planning";
     if (!flags.planners.empty() && !plans)
       throw cspace::ScenarioError("flag --planners: only --experiment planning (or all) plans; this run is '" +
