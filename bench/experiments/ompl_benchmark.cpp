@@ -63,13 +63,8 @@ Flags parseFlags(int argc, char** argv) {
     else if (flag == "--query") f.query = static_cast<int>(experiments::parseLong(flag, v, 0, 100000));
     else if (flag == "--seed") f.seed = static_cast<unsigned long>(experiments::parseLong(flag, v, 1, experiments::kMaxSeed));
     else if (flag == "--time-limit") f.time_limit = experiments::parseDouble(flag, v, 1e-3, 1e6);
-    else if (flag == "--planners") {
-      f.planners.clear();
-      std::stringstream list(v);
-      for (std::string name; std::getline(list, name, ',');)
-        if (!name.empty()) f.planners.push_back(name);
-      if (f.planners.empty()) throw std::invalid_argument("flag --planners: empty list");
-    } else throw std::invalid_argument("unknown flag '" + flag + "'");
+    else if (flag == "--planners") f.planners = experiments::parsePlannerList(v);  // as svmp-plan: no name twice
+    else throw std::invalid_argument("unknown flag '" + flag + "'");
   }
   if (f.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
   if (f.log.empty()) throw std::invalid_argument("flag --log is required");
