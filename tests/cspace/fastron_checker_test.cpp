@@ -31,15 +31,28 @@ std::unique_ptr<CollisionChecker> boxAt(const std::shared_ptr<const robots::Robo
   return std::make_unique<CollisionChecker>(robot, std::make_shared<const Environment>(std::vector<Obstacle>{o}), false);
 }
 
-double accuracy(const FastronChecker& proxy, const ValidityChecker& exact, int n, std::uint64_t seed) {
+// Agreement with the exact checker on n uniform configurations, and the share of colliding ones the
+// proxy predicts colliding (TPR) and of free ones it predicts free (TNR).
+struct Agreement {
+  double accuracy = 0, tpr = 0, tnr = 0, collision_share = 0;
+};
+
+Agreement agreement(const FastronChecker& proxy, const ValidityChecker& exact, int n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-kPi, kPi);
-  int agree = 0;
+  int hits = 0, caught = 0, frees = 0, cleared = 0;
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d q(u(rng), u(rng), u(rng));
-    agree += proxy.isValid(q) == exact.isValid(q);
+    const bool free = exact.isValid(q), predicted_free = proxy.isValid(q);
+    (free ? frees : hits)++;
+    (free ? cleared : caught) += predicted_free == free;
   }
-  return double(agree) / n;
+  return {double(caught + cleared) / n, double(caught) / std::max(hits, 1), double(cleared) / std::max(frees, 1),
+          double(hits) / n};
+}
+
+double accuracy(const FastronChecker& proxy, const ValidityChecker& exact, int n, std::uint64_t seed) {
+  return agreement(proxy, exact, n, seed).accuracy;
 }
 
 class ProxyFeatures : public ::testing::TestWithParam<FastronFeatures> {};
@@ -54,7 +67,14 @@ TEST_P(ProxyFeatures, LearnsTheCSpaceAndFollowsAMove) {
   const FastronLearnStats s = proxy.train(*exact, 1, extra);
   ASSERT_TRUE(s.train.converged);
   EXPECT_EQ(s.labelled, 3002);
-  EXPECT_GT(accuracy(proxy, *exact, 3000, 11), GetParam() == FastronFeatures::kControlPoints ? 0.95 : 0.85);
+  // Far better than the constant answer "free", which scores 1 - collision_share (0.88) with TPR 0:
+  // seed 11 measured accuracy 0.983 / 0.967 and TPR 0.957 / 0.931 (control points / joints).
+  const Agreement a = agreement(proxy, *exact, 3000, 11);
+  ASSERT_GT(a.collision_share, 0.05);
+  EXPECT_GT(a.accuracy, 0.95);
+  EXPECT_GT(a.tpr, 0.85);
+  EXPECT_GT(a.tnr, 0.95);
+  EXPECT_GT(proxy.supportConfigurations().size(), 10u);
   for (const auto& q : extra) EXPECT_EQ(proxy.isValid(q), exact->isValid(q));
   for (const auto& q : proxy.supportConfigurations()) EXPECT_EQ(proxy.isValid(q), exact->isValid(q));
 
