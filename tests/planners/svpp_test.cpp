@@ -370,5 +370,59 @@ TEST(SvppTest, SmoothingFollowsTheSeparatingLineOfAGivenPath) {
   EXPECT_EQ(kept.path, arm_path);
 }
 
+// Surface following against its definition (Miura 2006 secs. III-B-5 and IV-B-4), on a model whose
+// V = 0 is known: one support vector at c with coefficient 1 and bias -1/2 gives V = 0 on the circle
+// (sphere) of radius sqrt(ln 2 / gamma) about c. Every waypoint between start and goal lies on it,
+// a step d_s from the one before, and the walk reaches the goal.
+svm::BinaryModel roundSurface(const Eigen::VectorXd& centre, double radius) {
+  return svm::BinaryModel(centre, Eigen::VectorXd::Ones(1), -0.5, svm::Kernel::rbf(std::log(2.0) / (radius * radius)));
+}
+
+TEST(SurfaceFollowing, TwoDimensionsWalkTheCircleVEqualsZero) {
+  const Eigen::Vector2d centre(1, 1);
+  const double radius = 0.5;
+  const svm::BinaryModel model = roundSurface(centre, radius);
+  SurfaceFollowing o;
+  o.step = 0.05;
+  o.lower = Eigen::Vector2d(-1, -1);
+  o.upper = Eigen::Vector2d(3, 3);
+  const Eigen::Vector2d start = centre + Eigen::Vector2d(-radius, 0), goal = centre + Eigen::Vector2d(0, radius);
+  // Heading along the tangent towards the goal (a quarter turn clockwise round the circle).
+  const FollowResult r = followSurface2d(model, start, goal, Eigen::Vector2d(0, 1), o);
+  ASSERT_TRUE(r.reached()) << followStatusName(r.status);
+  ASSERT_GT(r.path.size(), 10u);  // a quarter of the circle is 0.79 long: about 16 steps
+  EXPECT_LT(r.path.size(), 20u);
+  for (size_t i = 1; i + 1 < r.path.size(); ++i) {
+    EXPECT_NEAR((r.path[i] - centre).norm(), radius, 1e-4) << "waypoint " << i;
+    EXPECT_NEAR((r.path[i] - r.path[i - 1]).norm(), o.step, 1e-9) << "waypoint " << i;
+    // Clockwise from the left through the top: never below the centre, x never decreasing.
+    EXPECT_GE(r.path[i].y(), centre.y() - 1e-9);
+    EXPECT_GE(r.path[i].x(), r.path[i - 1].x() - 1e-9);
+  }
+  EXPECT_TRUE(r.path.back() == goal);
+}
+
+TEST(SurfaceFollowing, ThreeDimensionsWalkTheSphereVEqualsZero) {
+  const Eigen::Vector3d centre(1, 1, 1);
+  const double radius = 0.5;
+  const svm::BinaryModel model = roundSurface(centre, radius);
+  SurfaceFollowing o;
+  o.step = 0.05;
+  o.lower = Eigen::Vector3d::Constant(-1);
+  o.upper = Eigen::Vector3d::Constant(3);
+  const Eigen::Vector3d start = centre + Eigen::Vector3d(-radius, 0, 0);
+  const Eigen::Vector3d goal = centre + radius * Eigen::Vector3d(0, 1, 1).normalized();
+  const FollowResult r = followSurface3d(model, start, goal, [&](const Eigen::VectorXd&) { return goal; }, o);
+  ASSERT_TRUE(r.reached()) << followStatusName(r.status);
+  // The great circle between them is a quarter turn, 0.79 long; the walk may wander but not far.
+  EXPECT_GT(r.path.size(), 10u);
+  EXPECT_LT(r.length, 1.5 * 0.5 * std::numbers::pi * radius);
+  for (size_t i = 1; i + 1 < r.path.size(); ++i) {
+    EXPECT_NEAR((r.path[i] - centre).norm(), radius, 1e-3) << "waypoint " << i;
+    EXPECT_NEAR((r.path[i] - r.path[i - 1]).norm(), o.step, 0.2 * o.step) << "waypoint " << i;
+  }
+  EXPECT_TRUE(r.path.back() == goal);
+}
+
 }  // namespace
 }  // namespace svmp::planners
