@@ -233,6 +233,41 @@ TEST(DhArmTest, PandaJointTwoSwingsTheArmAboutItsAxis) {
              Eigen::Vector3d(0.316 * std::sin(0.7), 0, 0.333 + 0.316 * std::cos(0.7)), "frame 3");
 }
 
+// Every joint of both arms, at random configurations and with a turned base: turning joint j by
+// delta leaves the frames before it in place and turns frame j and everything beyond it (the flange
+// included) rigidly by +delta about joint j's axis, z_j through frame j's origin (modified DH). A
+// flipped sense or an axis on the wrong frame breaks this while q = 0 stays right.
+TEST(DhArmTest, EveryJointTurnsWhatFollowsItRigidlyAboutItsAxis) {
+  for (DhArmSpec spec : {pandaSpec(), crsF3Spec(6)}) {
+    spec.base = Eigen::Translation3d(0.1, -0.2, 0.3) * Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -1, 2).normalized());
+    const DhArm arm(spec);
+    std::mt19937_64 rng(9);
+    for (int trial = 0; trial < 20; ++trial) {
+      Eigen::VectorXd q(arm.dof());
+      for (int k = 0; k < q.size(); ++k)
+        q[k] = std::uniform_real_distribution<double>(arm.lowerLimits()[k], arm.upperLimits()[k])(rng);
+      Poses before;
+      arm.linkPoses(q, before);
+      const Eigen::Isometry3d flange = arm.flangePose(q);
+      for (int j = 0; j < arm.dof(); ++j) {
+        const double delta = 0.3;
+        Eigen::VectorXd turned_q = q;
+        turned_q[j] += delta;
+        Poses after;
+        arm.linkPoses(turned_q, after);
+        const Eigen::Vector3d pivot = before[j].translation(), axis = before[j].linear().col(2);
+        const Eigen::Matrix3d turn = Eigen::AngleAxisd(delta, axis).toRotationMatrix();
+        for (int i = 0; i < j; ++i) expectNear(after[i].translation(), before[i].translation(), "a frame before the joint");
+        for (int i = j; i < arm.dof(); ++i) {
+          expectNear(after[i].translation(), pivot + turn * (before[i].translation() - pivot), "a frame from the joint on");
+          EXPECT_LT((after[i].linear() - turn * before[i].linear()).norm(), kTol) << spec.name << " joint " << j;
+        }
+        expectNear(arm.flangePose(turned_q).translation(), pivot + turn * (flange.translation() - pivot), "the flange");
+      }
+    }
+  }
+}
+
 TEST(DhArmTest, ClosedFormControlPointsMatchTheIsometryChain) {
   // Random configurations, a rotated and shifted base and a tool tip: every control point is a link
   // frame's origin (in chain order) and the last is the tool tip through flangePose.
