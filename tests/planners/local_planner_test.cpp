@@ -244,8 +244,14 @@ TEST(HyperplaneLabelling, RandomFailureRatePerScenario) {
     std::cout << "[ measure  ] " << name << ": dof " << w->space.dim() << ", " << s.size()
               << " IK samples, " << w->checker.environment().obstacles().size()
               << " obstacles; random hyperplane failure rate " << rate << " (1000 trials)\n";
-    EXPECT_GE(rate, 0.0);
-    EXPECT_LE(rate, 1.0);
+    // In 2-D the hyperplane is the start-goal line itself, which Fig 2.6 places between its obstacles:
+    // never one class. Beyond, the thesis' random hyperplane often leaves one class (ch. 2.4).
+    if (w->space.dim() == 2) {
+      EXPECT_EQ(rate, 0.0);
+    } else {
+      EXPECT_GT(rate, 0.05) << name;
+      EXPECT_LT(rate, 1.0) << name;
+    }
     for (std::uint64_t seed = 1; seed <= 20; ++seed) {
       const Labelling l = labelByHyperplane(s.points, s.regions, kBoundaryRegion, q.start, q.goal,
                                             LabellingMethod::kBalanced, seed);
@@ -298,7 +304,10 @@ TEST(LocalPlanner, TrapAheadIsALocalMinimum) {
     ASSERT_FALSE(r.path.empty());
     // Stopped in front of the wall, on the start's side, without entering it.
     EXPECT_LT(r.path.back()[0], 0.0) << r.path.back().transpose();
-    for (const auto& q : r.path) EXPECT_EQ(w->checker.check(q), cspace::kFree);
+    // It descended before it stalled, and every step of the descent is a free motion, not only its ends.
+    EXPECT_GT(r.path.size(), 3u);
+    for (size_t i = 0; i + 1 < r.path.size(); ++i)
+      EXPECT_TRUE(test::segmentIsValid(*w, r.path[i], r.path[i + 1])) << "step " << i;
   }
 }
 

@@ -96,6 +96,22 @@ TEST(Planners, SvmpCountersDescribeTheRoadmap) {
   EXPECT_TRUE(pathIsValid(*w, r.path));
 }
 
+// SVMP's milestones in a narrow passage are centred in it (centreAlongNormal), not merely free: in a
+// 0.002-wide gap every milestone within the wall lies within a quarter of the gap of its middle.
+TEST(Planners, SvmpMilestonesInAPassageAreCentredInIt) {
+  const double gap = 0.002;
+  auto w = makeWorld(gapScenario(gap, "  svmp: {defer_centring: false}\n"));
+  SvmpPlanner svmp(w->context, SvmpOptions::fromParameters(w->scenario.paramsFor("svmp")));
+  ASSERT_TRUE(svmp.build(1).solved());
+  int inside = 0;
+  for (const auto& q : svmp.roadmap().nodes())
+    if (std::abs(q.x() - 0.5) < 0.1) {
+      ++inside;
+      EXPECT_NEAR(q.y(), 0.5, 0.25 * gap) << q.transpose();
+    }
+  EXPECT_GT(inside, 0) << "no milestone in the passage";
+}
+
 void expectSameResult(const PlanResult& a, const PlanResult& b) {
   EXPECT_EQ(a.status, b.status);
   ASSERT_EQ(a.path.size(), b.path.size());
