@@ -123,5 +123,35 @@ resolution: 0.01
   expectError(with(arm, "position: [1.5, 0, 0.1]", "position: [1.5, 0, 0.2]"), {"does not reach it"});
 }
 
+// rpy is roll about x, then pitch about y, then yaw about z, all about the fixed axes (URDF's
+// convention): R = Rz(yaw) Ry(pitch) Rx(roll). A box 2 x 1 x 0.05 turned by all three: its long
+// axis points along R x = (cos y cos p, sin y cos p, -sin p), its thin one along R z, derived by hand.
+TEST(ScenarioReadingTest, RollPitchYawTurnAboutTheFixedAxesInThatOrder) {
+  const double roll = 0.3, pitch = -0.4, yaw = 1.1;
+  const std::string text = R"(robot: {type: point, bounds: {lower: [-5, -5, -5], upper: [5, 5, 5]}}
+obstacles:
+  - {shape: box, size: [2, 1, 0.05], position: [0, 0, 0], rpy: [0.3, -0.4, 1.1]}
+start: [4, 4, 4]
+goal: [-4, 4, 4]
+resolution: 0.01
+)";
+  const Scenario s = parseScenario(text, "test.yaml");
+  const CollisionChecker checker(s.robot, s.environment, s.self_collision);
+  const Eigen::Vector3d long_axis(std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), -std::sin(pitch));
+  const Eigen::Vector3d thin_axis(std::cos(yaw) * std::sin(pitch) * std::cos(roll) + std::sin(yaw) * std::sin(roll),
+                                  std::sin(yaw) * std::sin(pitch) * std::cos(roll) - std::cos(yaw) * std::sin(roll),
+                                  std::cos(pitch) * std::cos(roll));
+  EXPECT_EQ(checker.check(Eigen::Vector3d(0.95 * long_axis)), 1);
+  EXPECT_EQ(checker.check(Eigen::Vector3d(-0.95 * long_axis)), 1);
+  EXPECT_EQ(checker.check(Eigen::Vector3d(0.02 * thin_axis)), 1);
+  EXPECT_EQ(checker.check(Eigen::Vector3d(0.04 * thin_axis)), kFree);
+  // The other orders put the long axis elsewhere: 1.05 along it is past the box's end.
+  EXPECT_EQ(checker.check(Eigen::Vector3d(1.05 * long_axis)), kFree);
+  const Eigen::Matrix3d other = (Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()) *
+                                 Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                                 Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())).toRotationMatrix();
+  EXPECT_EQ(checker.check(Eigen::Vector3d(0.95 * (other * Eigen::Vector3d::UnitX()))), kFree);
+}
+
 }  // namespace
 }  // namespace svmp::cspace

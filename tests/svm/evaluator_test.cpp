@@ -153,12 +153,14 @@ TEST(TruncatedRbfEvaluator, ConstEvaluationIsThreadSafe) {
 
 TEST(TruncatedRbfEvaluator, SurvivesTheModelAndMoves) {
   std::unique_ptr<TruncatedRbfEvaluator> ev;
-  Eigen::VectorXd q = Eigen::VectorXd::Constant(2, 0.5);
+  Eigen::VectorXd q;
   double expected;
   {
     const BinaryModel m = trainedModel(2, 1000, 70);
+    q = m.supportVectors().col(0);  // near a support vector F is not just the bias
     ev = std::make_unique<TruncatedRbfEvaluator>(m);
     expected = ev->decision(q.data());
+    ASSERT_GT(std::abs(expected - m.bias()), 1e-3);
   }
   TruncatedRbfEvaluator moved = std::move(*ev);
   ev.reset();
