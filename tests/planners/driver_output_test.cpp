@@ -297,12 +297,16 @@ TEST(DriverOutput, RandomQueriesAreValidSeededAndBuiltOncePerRun) {
   std::ostringstream log, table;
   const auto results = runExperiment(scenario, options, log);
   ASSERT_EQ(results[0].runs.size(), 24u);
+  int solved = 0;
   for (const auto& r : results[0].runs) {
     EXPECT_EQ(r.build_ms > 0, r.query == 0) << "query " << r.query;  // one build per run
-    if (r.result.solved()) {
-      EXPECT_TRUE(r.result.certified);
-    }
+    if (!r.result.solved()) continue;
+    ++solved;
+    EXPECT_TRUE(r.result.certified);
+    EXPECT_TRUE(r.result.path.front() == queries[static_cast<size_t>(r.query)].start) << "query " << r.query;
+    EXPECT_TRUE(r.result.path.back() == queries[static_cast<size_t>(r.query)].goal) << "query " << r.query;
   }
+  EXPECT_GE(solved, 22);  // Fig 3.5's free space is one corridor: every pair is connected
   printTable(scenario, options, results, table);
   EXPECT_NE(table.str().find("12 queries per run, one build per run"), std::string::npos) << table.str();
 }

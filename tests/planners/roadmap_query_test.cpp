@@ -279,6 +279,7 @@ TEST(RoadmapQuery, SvmpAnswersFastronPandasRandomQueriesAllProven) {
     const PlanResult r = svmp->query(q, 1);
     ASSERT_TRUE(r.solved()) << r.message;
     EXPECT_TRUE(r.certified);
+    EXPECT_TRUE(test::pathIsValid(*w, r.path, q)) << "an independent dense re-check";
     // A roadmap edge is proven once, in the direction a query first used it: the proof is sound either
     // way, though bisection from the other end may stop short of it.
     for (size_t i = 0; i + 1 < r.path.size(); ++i)

@@ -120,15 +120,20 @@ inline ::testing::AssertionResult segmentIsValid(const World& w, const Eigen::Ve
 
 // The path joins the query's start and goal, and every segment passes segmentIsValid.
 inline ::testing::AssertionResult pathIsValid(const World& w, const std::vector<Eigen::VectorXd>& path,
-                                              double allowed_run = 0) {
+                                              const cspace::Query& query, double allowed_run = 0) {
   if (path.size() < 2) return ::testing::AssertionFailure() << "path has " << path.size() << " configurations";
-  if ((path.front() - w.query().start).norm() > 1e-9)
+  if ((path.front() - query.start).norm() > 1e-9)
     return ::testing::AssertionFailure() << "path starts at " << path.front().transpose();
-  if ((path.back() - w.query().goal).norm() > 1e-9)
+  if ((path.back() - query.goal).norm() > 1e-9)
     return ::testing::AssertionFailure() << "path ends at " << path.back().transpose();
   for (size_t i = 0; i + 1 < path.size(); ++i)
     if (auto valid = segmentIsValid(w, path[i], path[i + 1], allowed_run); !valid) return valid << " (segment " << i << ")";
   return ::testing::AssertionSuccess();
+}
+// The same for the scenario's own query.
+inline ::testing::AssertionResult pathIsValid(const World& w, const std::vector<Eigen::VectorXd>& path,
+                                              double allowed_run = 0) {
+  return pathIsValid(w, path, w.query(), allowed_run);
 }
 
 }  // namespace svmp::planners::test
