@@ -38,8 +38,10 @@ struct SolverOptions {
   // e.g. one-versus-rest across classes.
   int threads = 1;
   int parallel_min_samples = 8192;
-  // Polled every 1,000 iterations when set; a solve it ends reports SolverStatus::kStopped with the
-  // iterate it reached (a time limit's hook: one solve of 20,000 samples can take seconds).
+  // Polled every 1,000 iterations when set, and sooner on large active sets (every 2^20 gradient
+  // entries updated); a solve it ends reports SolverStatus::kStopped with the iterate it reached:
+  // alpha and bias, but no gradient (empty), objective or violation (NaN), and no warm start from it
+  // (a time limit's hook: one solve of 20,000 samples can take seconds).
   std::function<bool()> stop;
 
   std::string validate() const;  // "" when OK, else what is wrong

@@ -157,8 +157,15 @@ TEST(Solver, AStopEndsTheSolve) {
   opt.stop = [&] { return ++polls > 1; };
   const SolverResult r = solveBinary(p.X, p.binary(), C, Kernel::rbfFromSigma(sigmaFor(p)), opt);
   EXPECT_EQ(r.status, SolverStatus::kStopped) << r.report();
-  EXPECT_EQ(r.iterations, 1000);  // polls at iterations 0 (false) and 1000 (true)
+  // Polls at iteration 0 (false), then after 1,000 iterations or 2^20 gradient entries (true).
+  EXPECT_GT(r.iterations, (1L << 20) / 3000 - 1);
+  EXPECT_LE(r.iterations, 1000);
   EXPECT_EQ(polls, 2);
+  // The iterate, without the end's gradient reconstruction; no warm start from it.
+  EXPECT_EQ(r.alpha.size(), 3000);
+  EXPECT_EQ(r.gradient.size(), 0);
+  EXPECT_TRUE(std::isnan(r.objective));
+  EXPECT_THROW(makeWarmStart(p.X, p.binary(), C, r, {}), std::invalid_argument);
 }
 
 TEST(Solver, IterationLimitIsReported) {
