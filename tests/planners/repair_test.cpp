@@ -76,6 +76,29 @@ TEST(NarrowPassage, SvmpRepairSaysWhyItStopped) {
   EXPECT_GT(failures, 0);  // the test must see the message
 }
 
+// The round limit (32 x repair_rounds) bounds a repair that has no time limit; with one, a repair that
+// still grows its components runs on until the limit or until it stops growing (RRTConnect too
+// runs until its limit). A closed wall: no path, and free space on both sides for the components
+// to grow into, until they fill it.
+TEST(NarrowPassage, SvmpRepairRunsPastTheRoundLimitOnlyWithATimeLimit) {
+  const std::string yaml =
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n  - {name: wall, shape: box, size: [0.2, 1.2, 1], position: [0.5, 0.5, 0]}\n"
+      "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.002\n"
+      "planners:\n  svmp: {repair_rounds: 1}\n";
+  auto w = makeWorld(yaml);
+  const PlanResult bounded = w->planner("svmp")->solve(w->query(), 1);
+  EXPECT_EQ(bounded.status, PlanStatus::kFailed);
+  EXPECT_NE(bounded.message.find("after 32 repair rounds"), std::string::npos) << bounded.message;
+  EXPECT_NE(bounded.message.find("the limit of 32 rounds"), std::string::npos) << bounded.message;
+  const PlanResult timed = w->planner("svmp")->solve(w->query(), 1, Termination::after(30));
+  EXPECT_EQ(timed.status, PlanStatus::kFailed) << timed.message;  // it stopped growing long before 30 s
+  EXPECT_NE(timed.message.find("rounds without progress"), std::string::npos) << timed.message;
+  std::smatch rounds;
+  ASSERT_TRUE(std::regex_search(timed.message, rounds, std::regex("after ([0-9]+) repair rounds"))) << timed.message;
+  EXPECT_GT(std::stoi(rounds[1]), 32) << timed.message;
+}
+
 // RRT-Connect between two components (planners/tree_connect.hpp): the left side's two nodes and the
 // right side's one are joined through the 0.03 gap, on edges free under a dense re-check (up to
 // the corner a check at the resolution may clip), and the
