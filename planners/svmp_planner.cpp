@@ -372,8 +372,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   cspace::Rng rng(seed ^ 0xA5A5A5A5ULL), tree_rng(seed ^ 0x5A5A5A5AULL);
   std::string why = options_.repair_rounds == 0 ? "repair_rounds is 0" : "";  // why still not connected
   // A round that grows the start's or the goal's component is progress and costs no budget (up to
-  // kMaxRoundsFactor x repair_rounds rounds in all, and with no bound but the time limit when there is
-  // one: RRTConnect too runs until it); one without progress spends a round and doubles
+  // kMaxRoundsFactor x repair_rounds rounds in all); one without progress spends a round and doubles
   // the spread of the next round's samples (up to 8x). 8x stopped 5 of 4,380 runs (60 seeds, 73
   // files) that were still growing towards a window or along a tunnel; 32x solves all five
   // (docs/reproduction.md, "Repair that runs on while it grows").
@@ -446,23 +445,28 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       }
     }
     last_size = guided;
-    const bool budget =
-        spent < options_.repair_rounds && (round < kMaxRoundsFactor * options_.repair_rounds || stop.mayFire());
+    const bool budget = spent < options_.repair_rounds && round < kMaxRoundsFactor * options_.repair_rounds;
     if (budget && !before_repair) before_repair.emplace(roadmap_);
     if (!risk_) why = "no obstacle was sampled, so no decision boundary guides a repair";
     const bool repaired =
         budget && risk_ && !stop() &&
         repair(with_query, outcome.start_node, outcome.goal_node, widen, trail, rng, tree_rng, stop, why,
                result.times.certify_ms);
-    // Before a repaired query fails, one last try of trees ten times the size of those before the
-    // eager pass: the repair's rounds grow trees of repair_samples between guided rounds, too small
-    // where the passage winds through many dimensions (bench/unseen/crs6_partition: 3 of 60 seeds
-    // failed after 40 rounds, RRTConnect solved all 60).
-    constexpr int kLastTreesFactor = 10;
+    // Before a repaired query fails, trees ten times the size of those before the eager pass, then
+    // twice, four and eight times that: the repair's rounds grow trees of repair_samples between
+    // guided rounds, too small where the passage winds through many dimensions
+    // (bench/unseen/crs6_partition: 3 of 60 seeds failed after 40 rounds, RRTConnect solved all 60;
+    // an arm deep in a sleeve and a sphere in a building, where RRTConnect grows 23k nodes: 1 of 30
+    // failed with one size). A bound of work, not of time: the same seed fails the same way under
+    // any time limit, and a query no path answers costs about 15x one size's trees.
+    constexpr int kLastTreesFactor = 10, kLastTreesDoublings = 3;
     if (!repaired && options_.repair_rounds > 0 && options_.lazy && options_.lazy_trees > 0 && !stop()) {
-      const int samples = kLastTreesFactor * options_.lazy_trees;
-      if (joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result)) break;
-      why += std::string(why.empty() ? "" : "; ") + "trees of " + std::to_string(samples) +
+      const int first = kLastTreesFactor * options_.lazy_trees, last = first << kLastTreesDoublings;
+      bool joined = false;
+      for (int samples = first; samples <= last && !joined && !stop(); samples *= 2)
+        joined = joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result);
+      if (joined) break;
+      why += std::string(why.empty() ? "" : "; ") + "trees of up to " + std::to_string(last) +
              " samples did not join them";
     }
     if (stop()) {

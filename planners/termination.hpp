@@ -35,9 +35,6 @@ class Termination {
   }
 
   bool operator()() const { return (deadline_ && Clock::now() >= *deadline_) || (condition_ && condition_()); }
-  // Whether it can fire at all (a deadline or a condition): work without a bound of its own may then
-  // run on until it does.
-  bool mayFire() const { return deadline_.has_value() || static_cast<bool>(condition_); }
   // As a callable for code outside planners/ (the obstacle sampler's stop hook).
   std::function<bool()> asFunction() const { return [t = *this] { return t(); }; }
 
