@@ -478,25 +478,25 @@ SolverResult SmoSolver::run() {
   result.iterations = iter;
   result.bias = bias();
   result.alpha.resize(n_);
-  if (!stopped) {
-    result.violation = violation();
-    result.gradient.resize(n_);
-    result.gradient_bound.resize(n_);
-  }
-  double v = 0.0;
   for (int t = 0; t < n_; ++t) {
-    const int o = index_[t];
-    result.alpha[o] = alpha_[t];
-    if (!stopped) {
-      v += alpha_[t] * (gradient(t) - 1.0);
-      result.gradient[o] = gradient(t);
-      result.gradient_bound[o] = G_bar_[t];
-    }
+    result.alpha[index_[t]] = alpha_[t];
     if (alpha_[t] > 0) ++result.support_vectors;
     if (isUpper(t)) ++result.bounded_support_vectors;
   }
-  result.objective = stopped ? std::numeric_limits<double>::quiet_NaN() : 0.5 * v;
-  if (stopped) result.violation = std::numeric_limits<double>::quiet_NaN();
+  if (stopped) {
+    result.objective = result.violation = std::numeric_limits<double>::quiet_NaN();
+  } else {
+    result.violation = violation();
+    result.gradient.resize(n_);
+    result.gradient_bound.resize(n_);
+    double v = 0.0;
+    for (int t = 0; t < n_; ++t) {
+      v += alpha_[t] * (gradient(t) - 1.0);
+      result.gradient[index_[t]] = gradient(t);
+      result.gradient_bound[index_[t]] = G_bar_[t];
+    }
+    result.objective = 0.5 * v;
+  }
   result.cache_hits = cache_.hits();
   result.cache_misses = cache_.misses();
   result.kernel_entries = kernel_entries_;
