@@ -3,13 +3,12 @@
 // Fig. 2.6 scenario with a collision-free path, and a trap ahead of the start is a local minimum.
 #include <gtest/gtest.h>
 
-#include <numbers>
-#include <sstream>
-
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <random>
 #include <set>
+#include <sstream>
 
 #include "planners/hyperplane_labelling.hpp"
 #include "planners/ik_obstacle_sampler.hpp"
