@@ -15,6 +15,14 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kTol = 1e-12;
 
+// A configuration drawn uniformly within the robot's joint limits, joint by joint.
+Eigen::VectorXd randomConfiguration(const Robot& robot, std::mt19937_64& rng) {
+  Eigen::VectorXd q(robot.dof());
+  for (int k = 0; k < q.size(); ++k)
+    q[k] = std::uniform_real_distribution<double>(robot.lowerLimits()[k], robot.upperLimits()[k])(rng);
+  return q;
+}
+
 void expectNear(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, const char* what) {
   EXPECT_LT((actual - expected).norm(), kTol)
       << what << ": got [" << actual.transpose() << "], expected [" << expected.transpose() << "]";
@@ -243,9 +251,7 @@ TEST(DhArmTest, EveryJointTurnsWhatFollowsItRigidlyAboutItsAxis) {
     const DhArm arm(spec);
     std::mt19937_64 rng(9);
     for (int trial = 0; trial < 20; ++trial) {
-      Eigen::VectorXd q(arm.dof());
-      for (int k = 0; k < q.size(); ++k)
-        q[k] = std::uniform_real_distribution<double>(arm.lowerLimits()[k], arm.upperLimits()[k])(rng);
+      const Eigen::VectorXd q = randomConfiguration(arm, rng);
       Poses before;
       arm.linkPoses(q, before);
       const Eigen::Isometry3d flange = arm.flangePose(q);
@@ -278,9 +284,7 @@ TEST(DhArmTest, ClosedFormControlPointsMatchTheIsometryChain) {
     const DhArm arm(spec);
     std::mt19937_64 rng(5);
     for (int trial = 0; trial < 50; ++trial) {
-      Eigen::VectorXd q(arm.dof());
-      for (int k = 0; k < q.size(); ++k)
-        q[k] = std::uniform_real_distribution<double>(arm.lowerLimits()[k], arm.upperLimits()[k])(rng);
+      const Eigen::VectorXd q = randomConfiguration(arm, rng);
       Poses poses;
       arm.linkPoses(q, poses);
       Eigen::Matrix3Xd points;
@@ -322,9 +326,7 @@ TEST(RobotTest, MayReachHoldsEveryConfigurationsShapesAndNothingFarBeyond) {
     const auto tiny = [](const Eigen::Vector3d& p) { return Eigen::AlignedBox3d(p, p); };
     double farthest = 0;
     for (int trial = 0; trial < 2000; ++trial) {
-      Eigen::VectorXd q(robot->dof());
-      for (int k = 0; k < q.size(); ++k)
-        q[k] = std::uniform_real_distribution<double>(robot->lowerLimits()[k], robot->upperLimits()[k])(rng);
+      const Eigen::VectorXd q = randomConfiguration(*robot, rng);
       robot->linkPoses(q, poses);
       for (int link = 0; link < robot->numLinks(); ++link)
         for (Shape shape : robot->linkShapes(link)) {
