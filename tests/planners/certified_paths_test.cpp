@@ -59,12 +59,17 @@ experiments::DriverOptions optionsFor(const std::filesystem::path& file, std::ve
   return options;
 }
 
+// Built with OMPL: its RRTConnect is registered.
+bool withOmpl() {
+  const auto names = plannerNames();
+  return std::find(names.begin(), names.end(), "ompl-rrtconnect") != names.end();
+}
+
 bool isPointRobot(const cspace::Scenario& s) { return dynamic_cast<const robots::PointRobot*>(s.robot.get()); }
 
 TEST(CertifiedPaths, EveryPlannerOnEveryScenarioReturnsOnlyCertifiedPaths) {
   const std::filesystem::path dir = std::filesystem::path(SVMP_SOURCE_DIR) / "bench/scenarios";
-  const auto names = plannerNames();
-  const bool with_ompl = std::find(names.begin(), names.end(), "ompl-rrtconnect") != names.end();
+  const bool with_ompl = withOmpl();
   std::map<std::string, int> solved, files;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".yaml") continue;
@@ -109,9 +114,8 @@ TEST(CertifiedPaths, SimplifiedPathsStayCertified) {
 TEST(CertifiedPaths, PlanningOnTheProxyReturnsOnlyCertifiedPaths) {
   const std::filesystem::path file = std::filesystem::path(SVMP_SOURCE_DIR) / "bench/scenarios/fastron_panda.yaml";
   const cspace::Scenario scenario = cspace::loadScenario(file.string());
-  const auto names = plannerNames();
   std::vector<std::string> planners = {"svmp", "prm"};
-  if (std::find(names.begin(), names.end(), "ompl-rrtconnect") != names.end()) planners.push_back("ompl-rrtconnect");
+  if (withOmpl()) planners.push_back("ompl-rrtconnect");
   for (const char* checker : {"fastron-fk", "fastron-rbf"}) {
     experiments::DriverOptions options = optionsFor(file, planners);
     options.runs = 2;
