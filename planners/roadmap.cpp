@@ -1,8 +1,6 @@
 #include "planners/roadmap.hpp"
 
 #include <algorithm>
-#include <limits>
-#include <queue>
 
 namespace svmp::planners {
 
@@ -144,38 +142,6 @@ void Roadmap::clear() {
   components_.resize(0);
   stale_ = false;
   num_edges_ = 0;
-}
-
-std::vector<int> Roadmap::shortestPath(int from, int to,
-                                       const std::function<double(int)>& heuristic) const {
-  const int n = numNodes();
-  std::vector<double> g(n, std::numeric_limits<double>::infinity());
-  std::vector<int> parent(n, -1);
-  std::vector<char> closed(n, 0);
-  using Entry = std::pair<double, int>;  // (f = g + h, node)
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-  g[from] = 0;
-  open.emplace(heuristic(from), from);
-  while (!open.empty()) {
-    const int u = open.top().second;
-    open.pop();
-    if (closed[u]) continue;
-    closed[u] = 1;
-    if (u == to) break;
-    for (const Edge& e : adjacency_[u]) {
-      const double candidate = g[u] + e.cost;
-      if (candidate < g[e.to]) {
-        g[e.to] = candidate;
-        parent[e.to] = u;
-        open.emplace(candidate + heuristic(e.to), e.to);
-      }
-    }
-  }
-  if (!closed[to]) return {};
-  std::vector<int> path;
-  for (int v = to; v != -1; v = parent[v]) path.push_back(v);
-  std::reverse(path.begin(), path.end());
-  return path;
 }
 
 }  // namespace svmp::planners

@@ -6,8 +6,11 @@
 // Components count unchecked edges: they are what the roadmap may connect, not what it has proven.
 // Thread safety: none; one planner owns it.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace svmp::planners {
@@ -70,9 +73,24 @@ class Roadmap {
   bool connected(int a, int b) { return components().same(a, b); }
   std::vector<int> component(int node);  // every node connected to `node`, ascending
 
+  // What a search needs besides the roadmap; a caller that searches again and again (provenPath)
+  // keeps one, so the searches allocate nothing.
+  struct SearchScratch {
+    std::vector<double> g;
+    std::vector<int> parent;
+    std::vector<char> closed;
+    std::vector<std::pair<double, int>> open;  // a binary heap of (f = g + h, node), least f on top
+  };
   // Shortest path from `from` to `to` as node indices (empty when none). `heuristic(i)` must not
-  // overestimate the remaining cost to `to` (the metric distance does not).
-  std::vector<int> shortestPath(int from, int to, const std::function<double(int)>& heuristic) const;
+  // overestimate the remaining cost to `to` (the metric distance does not). A template, so the
+  // heuristic is inlined: it is called once per edge relaxed.
+  template <class Heuristic>
+  std::vector<int> shortestPath(int from, int to, Heuristic&& heuristic, SearchScratch& scratch) const;
+  template <class Heuristic>
+  std::vector<int> shortestPath(int from, int to, Heuristic&& heuristic) const {
+    SearchScratch scratch;
+    return shortestPath(from, to, heuristic, scratch);
+  }
 
  private:
   const Edge* find(int a, int b) const;  // the edge a-b in a's list, or nullptr
@@ -86,5 +104,42 @@ class Roadmap {
   bool stale_ = false;  // an edge was removed since components_ was built
   int num_edges_ = 0;
 };
+
+template <class Heuristic>
+std::vector<int> Roadmap::shortestPath(int from, int to, Heuristic&& heuristic, SearchScratch& scratch) const {
+  const int n = numNodes();
+  auto& [g, parent, closed, open] = scratch;
+  g.assign(n, std::numeric_limits<double>::infinity());
+  parent.assign(n, -1);
+  closed.assign(n, 0);
+  open.clear();
+  const auto push = [&open](double f, int v) {
+    open.emplace_back(f, v);
+    std::push_heap(open.begin(), open.end(), std::greater<>());
+  };
+  g[from] = 0;
+  push(heuristic(from), from);
+  while (!open.empty()) {
+    std::pop_heap(open.begin(), open.end(), std::greater<>());
+    const int u = open.back().second;
+    open.pop_back();
+    if (closed[u]) continue;
+    closed[u] = 1;
+    if (u == to) break;
+    for (const Edge& e : adjacency_[u]) {
+      const double candidate = g[u] + e.cost;
+      if (candidate < g[e.to]) {
+        g[e.to] = candidate;
+        parent[e.to] = u;
+        push(candidate + heuristic(e.to), e.to);
+      }
+    }
+  }
+  if (!closed[to]) return {};
+  std::vector<int> path;
+  for (int v = to; v != -1; v = parent[v]) path.push_back(v);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
 
 }  // namespace svmp::planners

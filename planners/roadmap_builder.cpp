@@ -113,6 +113,7 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
   // The searches repeat after each removal (hundreds of times on the arms' lazy roadmaps); the
   // heuristic of a node does not change between them.
   std::vector<double> heuristic(roadmap.numNodes(), -1.0);
+  Roadmap::SearchScratch scratch;
   Eigen::VectorXd point(target.size());
   int level = 1;  // the points of a bisection level: odd multiples of 2^-level
   const auto levelFree = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -145,7 +146,7 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
       double& h = heuristic[v];
       if (h < 0) h = context.space.distance(roadmap.node(v), target);
       return h;
-    });
+    }, scratch);
     if (nodes.empty()) return nodes;
     // One pass over the path's edges not yet `done`: each that passes `test` is marked (by `mark`,
     // when given), each that fails is removed (from the shared roadmap too). `whole`: the pass goes
