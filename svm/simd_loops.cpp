@@ -257,15 +257,22 @@ SVMP_INLINE void rbfColumnImpl(const double* coords, long stride, int d, const d
 
 // kD > 0: the dimension as a compile-time constant (loops over coordinates unroll, the gradient
 // accumulators stay in registers); kD = 0: run-time dimension up to 16.
+// The terms are summed in eight lanes whatever L is (support vector s into lane s mod 8; L < 8 keeps
+// 8 / L vectors, one per group of L lanes) and the lanes added in order at the end, so the rounding,
+// and with it every decision the sum feeds, is the same on AVX-512, AVX2 and SSE2 machines.
 template <int L, bool kGrad, int kD = 0>
 SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const double* q,
                                        double gamma, double r2, double* grad) {
   using D = typename V<L>::D;
   constexpr int kMaxDim = kD > 0 ? kD : 16;
+  constexpr int kGroups = 8 / L;
   const int d = kD > 0 ? kD : sv.d;
-  D f = splat<L>(0.0);
-  D g[kMaxDim];
-  for (int k = 0; k < d; ++k) g[k] = splat<L>(0.0);
+  D f[kGroups];
+  D g[kGroups][kMaxDim];
+  for (int a = 0; a < kGroups; ++a) {
+    f[a] = splat<L>(0.0);
+    for (int k = 0; k < d; ++k) g[a][k] = splat<L>(0.0);
+  }
   const D ng = splat<L>(-gamma), vr2 = splat<L>(r2), zero = splat<L>(0.0);
   const double radius_of_search = std::sqrt(r2) * (1 + 1e-12);  // never prunes a term it needs
   for (int b = 0; b < sv.blocks; ++b) {
@@ -299,18 +306,19 @@ SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const do
       if (!any) continue;
       D term = load<L>(sv.coef + s) * vexp<L>(ng * dist);
       term = inside ? term : zero;
-      f += term;
+      const int a = (s / L) % kGroups;  // blocks start at multiples of 8: this is (s mod 8) / L
+      f[a] += term;
       // sum term * x_k (reloaded from L1) instead of keeping d differences in registers
       if constexpr (kGrad)
-        for (int k = 0; k < d; ++k) g[k] += term * load<L>(sv.xs + k * sv.stride + s);
+        for (int k = 0; k < d; ++k) g[a][k] += term * load<L>(sv.xs + k * sv.stride + s);
     }
   }
   double sum = 0.0;
-  for (int l = 0; l < L; ++l) sum += f[l];
+  for (int lane = 0; lane < 8; ++lane) sum += f[lane / L][lane % L];
   if constexpr (kGrad) {
     for (int k = 0; k < d; ++k) {
       double gk = 0.0;
-      for (int l = 0; l < L; ++l) gk += g[k][l];
+      for (int lane = 0; lane < 8; ++lane) gk += g[lane / L][k][lane % L];
       // d/dq exp(-gamma |x-q|^2) = 2 gamma (x - q) exp(...): sum term (x - q) = gk - q_k sum
       grad[k] = 2.0 * gamma * (gk - q[k] * sum);
     }
@@ -391,7 +399,7 @@ SVMP_AVX512 inline void selectJStep(SelectJLanes& s, int t, __m512d tv, const do
   s.g2 = _mm512_max_pd(s.g2, _mm512_sub_pd(yg, lowp));
   const __m512d diff = _mm512_add_pd(vgmax, yg);
   const __m512d kit = _mm512_cvtps_pd(_mm256_loadu_ps(Ki + t));
-  __m512d quad = _mm512_fnmadd_pd(vtwo, kit, _mm512_add_pd(vkii, _mm512_loadu_pd(diag + t)));
+  __m512d quad = _mm512_sub_pd(_mm512_add_pd(vkii, _mm512_loadu_pd(diag + t)), _mm512_mul_pd(vtwo, kit));
   quad = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(quad, vzero, _CMP_GT_OQ), vtau, quad);
   const __m512d num = _mm512_mul_pd(diff, diff);
   const __mmask8 better =
@@ -432,10 +440,10 @@ SVMP_AVX512 void updateGradientAvx512(int m, double* yG, const float* Ki, const 
 SVMP_AVX512 inline void updateSelectIStep(int t, __m512d tv, double* yG, const float* Ki, const float* Kj,
                                           __m512d vwi, __m512d vwj, const double* up, __m512d& best,
                                           __m512d& idx) {
-  // g + (wi Ki + wj Kj), rounded as the generic loop's contraction.
+  // g + (wi Ki + wj Kj), each operation rounded as in the generic loop.
+  const __m512d ki = _mm512_mul_pd(vwi, _mm512_cvtps_pd(_mm256_loadu_ps(Ki + t)));
   const __m512d kj = _mm512_mul_pd(vwj, _mm512_cvtps_pd(_mm256_loadu_ps(Kj + t)));
-  const __m512d g = _mm512_add_pd(_mm512_loadu_pd(yG + t),
-                                  _mm512_fmadd_pd(vwi, _mm512_cvtps_pd(_mm256_loadu_ps(Ki + t)), kj));
+  const __m512d g = _mm512_add_pd(_mm512_loadu_pd(yG + t), _mm512_add_pd(ki, kj));
   _mm512_storeu_pd(yG + t, g);
   const __m512d v = _mm512_sub_pd(_mm512_loadu_pd(up + t), g);
   const __mmask8 better = _mm512_cmp_pd_mask(v, best, _CMP_GT_OQ);

@@ -40,7 +40,7 @@ void rbfColumn(const double* coords, long stride, int d, const double* z, double
 // Truncated RBF sum over blocks of support vectors (thesis ch. 4.3.1): terms with squared distance
 // d^2 >= r2 are zero. Blocks whose bounding sphere or box is at squared distance >= r2 are skipped.
 // xs: coordinates, row k at xs + k * stride, blocks of `block` consecutive columns (block is a
-// multiple of 4; padding columns have coefficient 0). lo/hi: bounding boxes, row k at k * blocks.
+// multiple of 8; padding columns have coefficient 0). lo/hi: bounding boxes, row k at k * blocks.
 // Returns sum coef_s exp(-gamma d_s^2); grad (if not null) gets its gradient w.r.t. q.
 struct BlockedSupportVectors {
   int d, blocks, block;

@@ -1,13 +1,18 @@
 // The vectorised SMO loops (whichever of AVX-512, AVX2 or SSE2 this machine runs) against one-at-a-time
 // references, at every length from 0 to 70 (the 8- and 16-entry steps and their tails), with ties.
+// Values are compared bit for bit where the loops promise the same bits on every instruction set (ctest
+// runs these tests on all three): the references round each operation alone, as the loops do
+// (-ffp-contract=off for both, tests/svm/CMakeLists.txt).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
 
 #include "svm/box_loops.hpp"
+#include "svm/fast_exp.hpp"
 #include "svm/simd_loops.hpp"
 
 namespace svmp::svm::loops {
@@ -77,10 +82,10 @@ TEST(SimdLoops, UpdateGradientSelectIUpdatesEveryEntryAndFindsTheFirstMaximum) {
           if (e.up[t] - expected[t] > value) value = e.up[t] - expected[t], index = t;
         }
         const ArgMax r = updateGradientSelectI(m, e.yG.data(), e.Ki.data(), e.Kj.data(), wi, wj, e.up.data());
-        for (int t = 0; t < m; ++t) ASSERT_NEAR(e.yG[t], expected[t], 1e-15) << "entry " << t << " of " << m;
+        for (int t = 0; t < m; ++t) ASSERT_EQ(e.yG[t], expected[t]) << "entry " << t << " of " << m;
         ASSERT_EQ(r.index, index) << "m " << m << " tied " << tied;
         if (index >= 0) {
-          EXPECT_NEAR(r.value, value, 1e-15);
+          EXPECT_EQ(r.value, value);
         }
       }
 }
@@ -111,6 +116,90 @@ TEST(SimdLoops, UpdateGradientSelectBoxAgreesWithTheDoubledEntries) {
         const ArgMax unchanged = updateGradientSelectBox(m, e.yG.data(), nullptr, w, e.up.data(), f.up.data());
         EXPECT_EQ(unchanged.index, box.index);
       }
+}
+
+// Every entry of a kernel column is the scalar exponential of the same distance, whatever lane or tail
+// computes it: degree 12 in double, degree 8 rounded to float.
+TEST(SimdLoops, RbfColumnEntriesAreTheScalarExponentialBitForBit) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int d : {1, 3, 7})
+    for (int len = 0; len <= 40; ++len) {
+      std::vector<double> coords(static_cast<size_t>(d) * len), z(d), column(len);
+      std::vector<float> column_f(len);
+      for (double& c : coords) c = u(rng);
+      for (double& c : z) c = u(rng);
+      const double neg_gamma = -3.7;
+      rbfColumn(coords.data(), len, d, z.data(), neg_gamma, len, column.data());
+      rbfColumn(coords.data(), len, d, z.data(), neg_gamma, len, column_f.data());
+      for (int t = 0; t < len; ++t) {
+        double dist = 0.0;
+        for (int k = 0; k < d; ++k) {
+          const double diff = coords[static_cast<size_t>(k) * len + t] - z[k];
+          dist += diff * diff;
+        }
+        ASSERT_EQ(column[t], (expNonPositiveOf<12, double, long long>(neg_gamma * dist))) << "d " << d << " entry " << t;
+        ASSERT_EQ(column_f[t], static_cast<float>(expNonPositiveOf<8, double, long long>(neg_gamma * dist)));
+      }
+    }
+}
+
+// The truncated sum and its gradient: the terms within the radius summed into eight lanes (support
+// vector s into lane s mod 8), the lanes added in order, bit for bit, on the fixed dimensions (2, 3,
+// 6, 7) and the run-time ones.
+TEST(SimdLoops, TruncatedRbfSumAddsTheTermsInEightLanesBitForBit) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int d : {2, 3, 5, 6, 7, 9}) {
+    const int block = 32, blocks = 3, n = block * blocks;
+    std::vector<double> xs(static_cast<size_t>(d) * n), coef(n), lo(d * blocks), hi(d * blocks);
+    std::vector<double> centre(d * blocks), radius(blocks);
+    for (int s = 0; s < n; ++s) {
+      coef[s] = s % block >= block - 3 ? 0.0 : u(rng);  // the last three of each block: padding
+      for (int k = 0; k < d; ++k) xs[static_cast<size_t>(k) * n + s] = 0.6 * u(rng) + (s / block) * 0.5;
+    }
+    for (int b = 0; b < blocks; ++b) {
+      double r2 = 0.0;
+      for (int k = 0; k < d; ++k) {
+        const auto first = xs.begin() + static_cast<long>(k) * n + b * block;
+        const auto [mn, mx] = std::minmax_element(first, first + block);
+        lo[k * blocks + b] = *mn, hi[k * blocks + b] = *mx, centre[k * blocks + b] = 0.5 * (*mn + *mx);
+        r2 += 0.25 * (*mx - *mn) * (*mx - *mn);
+      }
+      radius[b] = std::sqrt(r2) * (1 + 1e-9);
+    }
+    const BlockedSupportVectors sv{d, blocks, block, n, xs.data(), coef.data(), lo.data(), hi.data(),
+                                   centre.data(), radius.data()};
+    const double gamma = 2.5, r2 = 0.6;
+    for (int rep = 0; rep < 20; ++rep) {
+      std::vector<double> q(d), grad(d);
+      for (double& c : q) c = 0.8 * u(rng) + 0.4;
+      const double f = truncatedRbfSum(sv, q.data(), gamma, r2, grad.data());
+      double lanes[8] = {}, grad_lanes[8][9] = {};
+      int inside = 0;
+      for (int s = 0; s < n; ++s) {
+        double dist = 0.0;
+        for (int k = 0; k < d; ++k) {
+          const double c = q[k] - xs[static_cast<size_t>(k) * n + s];
+          dist += c * c;
+        }
+        if (!(dist < r2)) continue;
+        ++inside;
+        const double term = coef[s] * expNonPositiveOf<12, double, long long>(-gamma * dist);
+        lanes[s % 8] += term;
+        for (int k = 0; k < d; ++k) grad_lanes[s % 8][k] += term * xs[static_cast<size_t>(k) * n + s];
+      }
+      double sum = 0.0;
+      for (double lane : lanes) sum += lane;
+      ASSERT_EQ(f, sum) << "d " << d << " rep " << rep << ", " << inside << " terms inside";
+      for (int k = 0; k < d; ++k) {
+        double gk = 0.0;
+        for (const auto& lane : grad_lanes) gk += lane[k];
+        ASSERT_EQ(grad[k], 2.0 * gamma * (gk - q[k] * sum)) << "d " << d << " coordinate " << k;
+      }
+      EXPECT_EQ(truncatedRbfSum(sv, q.data(), gamma, r2, nullptr), f);
+    }
+  }
 }
 
 }  // namespace
