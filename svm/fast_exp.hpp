@@ -14,9 +14,18 @@ inline constexpr double kInverseFactorial[13] = {
     1.0 / 120.0,   1.0 / 720.0,    1.0 / 5040.0,    1.0 / 40320.0,    1.0 / 362880.0,
     1.0 / 3628800.0, 1.0 / 39916800.0, 1.0 / 479001600.0};
 
+// p * r + c as two roundings; the dispatched loops pass a fused multiply-add instead (svm/simd_loops.cpp).
+struct MulThenAdd {
+  template <class D>
+  D operator()(D p, D r, D c) const {
+    return p * r + c;
+  }
+};
+
 // D: double or a GCC vector of doubles; I: the same-sized integer type (long long or its vector).
-template <int kDegree, class D, class I>
-inline __attribute__((always_inline)) D expNonPositiveOf(D x) {
+// `madd(p, r, c)`: the polynomial's Horner step p r + c.
+template <int kDegree, class D, class I, class MulAdd = MulThenAdd>
+inline __attribute__((always_inline)) D expNonPositiveOf(D x, MulAdd madd = {}) {
   static_assert(kDegree >= 1 && kDegree <= 12);
   const D lo = D{} - 700.0;
   x = x < lo ? lo : x;
@@ -26,7 +35,7 @@ inline __attribute__((always_inline)) D expNonPositiveOf(D x) {
   const D r = (x - k * 6.93145751953125e-1) - k * 1.42860682030941723212e-6;  // ln2 split hi + lo
   D p = D{} + kInverseFactorial[kDegree];
 #pragma GCC unroll 12
-  for (int i = kDegree - 1; i >= 0; --i) p = p * r + kInverseFactorial[i];
+  for (int i = kDegree - 1; i >= 0; --i) p = madd(p, r, D{} + kInverseFactorial[i]);
   const I bits = (__builtin_bit_cast(I, t) - 0x4338000000000000LL + 1023) << 52;
   return p * __builtin_bit_cast(D, bits);
 }

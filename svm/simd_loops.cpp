@@ -78,10 +78,39 @@ SVMP_INLINE typename V<L>::D iota(double start) {
   return v;
 }
 
-// svm/fast_exp.hpp lane-wise. kFloat: the result is stored as float (kernel cache), so degree 8.
+// a b + c rounded once: the FMA instructions on AVX-512 and AVX2, the C library's fma (which rounds
+// alike) lane by lane on SSE2 machines, which have no FMA. Explicit, as the file is compiled without
+// contraction (svm/CMakeLists.txt): every width and tail fuses the same operations, so all give the
+// same bits. Not always_inline: intrinsics of a target cannot be forced into the generic templates
+// that call them; the entry points (SVMP_ENTRY) flatten them in.
+#define SVMP_AVX2 __attribute__((target("avx2,fma")))
+#define SVMP_ENTRY __attribute__((flatten))
+SVMP_AVX512 inline V<8>::D fmadd(V<8>::D a, V<8>::D b, V<8>::D c) {
+  return reinterpret_cast<V<8>::D>(_mm512_fmadd_pd(reinterpret_cast<__m512d>(a), reinterpret_cast<__m512d>(b),
+                                                   reinterpret_cast<__m512d>(c)));
+}
+SVMP_AVX2 inline V<4>::D fmadd(V<4>::D a, V<4>::D b, V<4>::D c) {
+  return reinterpret_cast<V<4>::D>(_mm256_fmadd_pd(reinterpret_cast<__m256d>(a), reinterpret_cast<__m256d>(b),
+                                                   reinterpret_cast<__m256d>(c)));
+}
+inline V<2>::D fmadd(V<2>::D a, V<2>::D b, V<2>::D c) {
+  return V<2>::D{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1])};
+}
+template <int L>
+struct FusedMulAdd {
+  typename V<L>::D operator()(typename V<L>::D p, typename V<L>::D r, typename V<L>::D c) const {
+    return fmadd(p, r, c);
+  }
+};
+struct ScalarFusedMulAdd {
+  SVMP_INLINE double operator()(double p, double r, double c) const { return __builtin_fma(p, r, c); }
+};
+
+// svm/fast_exp.hpp lane-wise, its polynomial fused. kFloat: the result is stored as float (kernel
+// cache), so degree 8.
 template <int L, bool kFloat = false>
-SVMP_INLINE typename V<L>::D vexp(typename V<L>::D x) {
-  return expNonPositiveOf<kFloat ? 8 : 12, typename V<L>::D, typename V<L>::I>(x);
+inline typename V<L>::D vexp(typename V<L>::D x) {
+  return expNonPositiveOf<kFloat ? 8 : 12, typename V<L>::D, typename V<L>::I>(x, FusedMulAdd<L>{});
 }
 
 // Lane winner: largest value, smallest index on ties (deterministic for any L).
@@ -224,7 +253,7 @@ SVMP_INLINE void updateGradientImpl(int m, double* yG, const float* Ki, const fl
 // Two vectors per step: the exponential is a long dependency chain, two chains hide its latency.
 // Distances accumulate in registers across the d coordinate rows (unit stride in each row).
 template <int L, typename Out>
-SVMP_INLINE void rbfColumnImpl(const double* coords, long stride, int d, const double* z,
+inline void rbfColumnImpl(const double* coords, long stride, int d, const double* z,
                                double neg_gamma, int len, Out* out) {
   using D = typename V<L>::D;
   constexpr bool kFloat = sizeof(Out) == sizeof(float);
@@ -236,8 +265,8 @@ SVMP_INLINE void rbfColumnImpl(const double* coords, long stride, int d, const d
     for (int k = 0; k < d; ++k, row += stride) {
       const D zk = splat<L>(z[k]);
       const D a = load<L>(row) - zk, b = load<L>(row + L) - zk;
-      d0 += a * a;
-      d1 += b * b;
+      d0 = fmadd(a, a, d0);
+      d1 = fmadd(b, b, d1);
     }
     store<L>(out + t, vexp<L, kFloat>(ng * d0));
     store<L>(out + t + L, vexp<L, kFloat>(ng * d1));
@@ -246,12 +275,12 @@ SVMP_INLINE void rbfColumnImpl(const double* coords, long stride, int d, const d
     double dist = 0.0;
     for (int k = 0; k < d; ++k) {
       const double diff = coords[k * stride + t] - z[k];
-      dist += diff * diff;
+      dist = __builtin_fma(diff, diff, dist);
     }
     // The vectors' polynomial, not expNonPositive's degree 12: which entries are left to this tail
     // depends on the lane count and on where a partly cached column resumes, and a float entry must
     // not depend on either (AVX2 and AVX-512 machines, or two cache sizes, train alike).
-    out[t] = static_cast<Out>(expNonPositiveOf<kFloat ? 8 : 12, double, long long>(neg_gamma * dist));
+    out[t] = static_cast<Out>(expNonPositiveOf<kFloat ? 8 : 12, double, long long>(neg_gamma * dist, ScalarFusedMulAdd{}));
   }
 }
 
@@ -261,7 +290,7 @@ SVMP_INLINE void rbfColumnImpl(const double* coords, long stride, int d, const d
 // 8 / L vectors, one per group of L lanes) and the lanes added in order at the end, so the rounding,
 // and with it every decision the sum feeds, is the same on AVX-512, AVX2 and SSE2 machines.
 template <int L, bool kGrad, int kD = 0>
-SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const double* q,
+inline double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const double* q,
                                        double gamma, double r2, double* grad) {
   using D = typename V<L>::D;
   constexpr int kMaxDim = kD > 0 ? kD : 16;
@@ -291,26 +320,31 @@ SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const do
       box += c * c;
     }
     if (box >= r2) continue;
-    for (int s = b * sv.block; s < (b + 1) * sv.block; s += L) {
-      D dist = zero;
-      for (int k = 0; k < d; ++k) {
-        // q - x like the brute-force reference, so the same terms pass the radius test
-        const D c = splat<L>(q[k]) - load<L>(sv.xs + k * sv.stride + s);
-        dist += c * c;
+    // Eight support vectors a step, in kGroups vectors of L (a compile-time index: the accumulators
+    // stay in registers).
+    for (int s8 = b * sv.block; s8 < (b + 1) * sv.block; s8 += 8) {
+#pragma GCC unroll 4
+      for (int a = 0; a < kGroups; ++a) {
+        const int s = s8 + a * L;
+        D dist = zero;
+        for (int k = 0; k < d; ++k) {
+          // q - x like the brute-force reference, so the same terms pass the radius test
+          const D c = splat<L>(q[k]) - load<L>(sv.xs + k * sv.stride + s);
+          dist = fmadd(c, c, dist);
+        }
+        // Skip the exponential when no lane is inside the radius: leaves are spatially sorted, so
+        // in-radius support vectors come in runs and most groups of a passing leaf are all out.
+        const auto inside = dist < vr2;
+        bool any = false;
+        for (int l = 0; l < L; ++l) any |= inside[l] != 0;
+        if (!any) continue;
+        D term = load<L>(sv.coef + s) * vexp<L>(ng * dist);
+        term = inside ? term : zero;
+        f[a] += term;
+        // sum term * x_k (reloaded from L1) instead of keeping d differences in registers
+        if constexpr (kGrad)
+          for (int k = 0; k < d; ++k) g[a][k] = fmadd(term, load<L>(sv.xs + k * sv.stride + s), g[a][k]);
       }
-      // Skip the exponential when no lane is inside the radius: leaves are spatially sorted, so
-      // in-radius support vectors come in runs and most 4-groups of a passing leaf are all out.
-      const auto inside = dist < vr2;
-      bool any = false;
-      for (int l = 0; l < L; ++l) any |= inside[l] != 0;
-      if (!any) continue;
-      D term = load<L>(sv.coef + s) * vexp<L>(ng * dist);
-      term = inside ? term : zero;
-      const int a = (s / L) % kGroups;  // blocks start at multiples of 8: this is (s mod 8) / L
-      f[a] += term;
-      // sum term * x_k (reloaded from L1) instead of keeping d differences in registers
-      if constexpr (kGrad)
-        for (int k = 0; k < d; ++k) g[a][k] += term * load<L>(sv.xs + k * sv.stride + s);
     }
   }
   double sum = 0.0;
@@ -325,8 +359,6 @@ SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const do
   }
   return sum;
 }
-
-#define SVMP_AVX2 __attribute__((target("avx2")))
 
 SVMP_AVX2 ArgMax selectIAvx2(int m, const double* up, const double* yG) {
   return selectIImpl<4>(m, up, yG);
@@ -344,13 +376,13 @@ SVMP_AVX2 ArgMax updateGradientSelectIAvx2(int m, double* yG, const float* Ki, c
   return updateGradientSelectIImpl<4>(m, yG, Ki, Kj, wi, wj, up);
 }
 template <typename Out>
-SVMP_AVX2 void rbfColumnAvx2(const double* coords, long stride, int d, const double* z,
+SVMP_AVX2 SVMP_ENTRY void rbfColumnAvx2(const double* coords, long stride, int d, const double* z,
                              double neg_gamma, int len, Out* out) {
   rbfColumnImpl<4>(coords, stride, d, z, neg_gamma, len, out);
 }
 
 template <int L, bool kGrad>
-SVMP_INLINE double truncatedRbfSumDispatch(const BlockedSupportVectors& sv, const double* q,
+inline double truncatedRbfSumDispatch(const BlockedSupportVectors& sv, const double* q,
                                            double gamma, double r2, double* grad) {
   switch (sv.d) {
     case 2:
@@ -366,7 +398,7 @@ SVMP_INLINE double truncatedRbfSumDispatch(const BlockedSupportVectors& sv, cons
   }
 }
 
-SVMP_AVX2 double truncatedRbfSumAvx2(const BlockedSupportVectors& sv, const double* q, double gamma,
+SVMP_AVX2 SVMP_ENTRY double truncatedRbfSumAvx2(const BlockedSupportVectors& sv, const double* q, double gamma,
                                      double r2, double* grad) {
   return grad ? truncatedRbfSumDispatch<4, true>(sv, q, gamma, r2, grad)
               : truncatedRbfSumDispatch<4, false>(sv, q, gamma, r2, grad);
@@ -472,11 +504,11 @@ SVMP_AVX512 ArgMax updateGradientSelectIAvx512(int m, double* yG, const float* K
 }
 #pragma GCC diagnostic pop
 template <typename Out>
-SVMP_AVX512 void rbfColumnAvx512(const double* coords, long stride, int d, const double* z,
+SVMP_AVX512 SVMP_ENTRY void rbfColumnAvx512(const double* coords, long stride, int d, const double* z,
                                  double neg_gamma, int len, Out* out) {
   rbfColumnImpl<8>(coords, stride, d, z, neg_gamma, len, out);
 }
-SVMP_AVX512 double truncatedRbfSumAvx512(const BlockedSupportVectors& sv, const double* q,
+SVMP_AVX512 SVMP_ENTRY double truncatedRbfSumAvx512(const BlockedSupportVectors& sv, const double* q,
                                          double gamma, double r2, double* grad) {
   return grad ? truncatedRbfSumDispatch<8, true>(sv, q, gamma, r2, grad)
               : truncatedRbfSumDispatch<8, false>(sv, q, gamma, r2, grad);
@@ -485,7 +517,7 @@ SVMP_AVX512 double truncatedRbfSumAvx512(const BlockedSupportVectors& sv, const 
 // SVMP_SIMD=avx2 keeps a machine with AVX-512 on the 4-lane loops (to measure what 8 lanes give, and
 // to reproduce an AVX2 machine's results); SVMP_SIMD=sse2 on the 2-lane ones (the tests run all three).
 const std::string kSimdCap = std::getenv("SVMP_SIMD") ? std::getenv("SVMP_SIMD") : "";
-const bool kHaveAvx2 = __builtin_cpu_supports("avx2") && kSimdCap != "sse2";
+const bool kHaveAvx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && kSimdCap != "sse2";
 const bool kHaveAvx512 = __builtin_cpu_supports("avx512f") && kSimdCap != "avx2" && kSimdCap != "sse2";
 
 }  // namespace

@@ -1,8 +1,8 @@
 // The vectorised SMO loops (whichever of AVX-512, AVX2 or SSE2 this machine runs) against one-at-a-time
 // references, at every length from 0 to 70 (the 8- and 16-entry steps and their tails), with ties.
 // Values are compared bit for bit where the loops promise the same bits on every instruction set (ctest
-// runs these tests on all three): the references round each operation alone, as the loops do
-// (-ffp-contract=off for both, tests/svm/CMakeLists.txt).
+// runs these tests on all three): the references fuse a multiply and an add where the loops do (fma)
+// and round every other operation alone (-ffp-contract=off for both, tests/svm/CMakeLists.txt).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,6 +19,12 @@ namespace svmp::svm::loops {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The exponential's Horner step as the loops take it: one rounding.
+struct Fused {
+  double operator()(double p, double r, double c) const { return std::fma(p, r, c); }
+};
+double fusedExp(double x) { return expNonPositiveOf<12, double, long long>(x, Fused{}); }
 
 struct Entries {
   std::vector<double> yG, low, up, diag;
@@ -119,7 +125,8 @@ TEST(SimdLoops, UpdateGradientSelectBoxAgreesWithTheDoubledEntries) {
 }
 
 // Every entry of a kernel column is the scalar exponential of the same distance, whatever lane or tail
-// computes it: degree 12 in double, degree 8 rounded to float.
+// computes it: degree 12 in double, degree 8 rounded to float, the squares summed and the polynomial
+// stepped by fused multiply-adds.
 TEST(SimdLoops, RbfColumnEntriesAreTheScalarExponentialBitForBit) {
   std::mt19937_64 rng(6);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -136,17 +143,17 @@ TEST(SimdLoops, RbfColumnEntriesAreTheScalarExponentialBitForBit) {
         double dist = 0.0;
         for (int k = 0; k < d; ++k) {
           const double diff = coords[static_cast<size_t>(k) * len + t] - z[k];
-          dist += diff * diff;
+          dist = std::fma(diff, diff, dist);
         }
-        ASSERT_EQ(column[t], (expNonPositiveOf<12, double, long long>(neg_gamma * dist))) << "d " << d << " entry " << t;
-        ASSERT_EQ(column_f[t], static_cast<float>(expNonPositiveOf<8, double, long long>(neg_gamma * dist)));
+        ASSERT_EQ(column[t], fusedExp(neg_gamma * dist)) << "d " << d << " entry " << t;
+        ASSERT_EQ(column_f[t], static_cast<float>(expNonPositiveOf<8, double, long long>(neg_gamma * dist, Fused{})));
       }
     }
 }
 
 // The truncated sum and its gradient: the terms within the radius summed into eight lanes (support
-// vector s into lane s mod 8), the lanes added in order, bit for bit, on the fixed dimensions (2, 3,
-// 6, 7) and the run-time ones.
+// vector s into lane s mod 8; the gradient's terms fused), the lanes added in order, bit for bit, on
+// the fixed dimensions (2, 3, 6, 7) and the run-time ones.
 TEST(SimdLoops, TruncatedRbfSumAddsTheTermsInEightLanesBitForBit) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -181,13 +188,14 @@ TEST(SimdLoops, TruncatedRbfSumAddsTheTermsInEightLanesBitForBit) {
         double dist = 0.0;
         for (int k = 0; k < d; ++k) {
           const double c = q[k] - xs[static_cast<size_t>(k) * n + s];
-          dist += c * c;
+          dist = std::fma(c, c, dist);
         }
         if (!(dist < r2)) continue;
         ++inside;
-        const double term = coef[s] * expNonPositiveOf<12, double, long long>(-gamma * dist);
+        const double term = coef[s] * fusedExp(-gamma * dist);
         lanes[s % 8] += term;
-        for (int k = 0; k < d; ++k) grad_lanes[s % 8][k] += term * xs[static_cast<size_t>(k) * n + s];
+        for (int k = 0; k < d; ++k)
+          grad_lanes[s % 8][k] = std::fma(term, xs[static_cast<size_t>(k) * n + s], grad_lanes[s % 8][k]);
       }
       double sum = 0.0;
       for (double lane : lanes) sum += lane;
