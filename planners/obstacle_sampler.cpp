@@ -150,7 +150,9 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
     }
     if (!found) {
       tree.warning = "obstacle '" + obstacle.name + "': no configuration hitting it in " +
-                     std::to_string(options.max_root_attempts) + " uniform samples; give `sample:`";
+                     std::to_string(options.max_root_attempts) +
+                     " uniform samples (out of the robot's reach, or a small target: give `sample:`, a "
+                     "configuration that hits it)";
       return tree;
     }
     root = q;

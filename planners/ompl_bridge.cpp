@@ -6,7 +6,8 @@
 // planners (RRT*, FMT*, Informed RRT*) stop at their first solution by default (path length objective
 // with an infinite cost threshold), as in Das & Yip 2019 sec. IV-B. OMPL works on coordinates scaled
 // by sqrt(w), where its Euclidean distance is the weighted metric of thesis eq. 4.3.
-// Parameters (scenario `planners.ompl-*`): time_limit (s, default 10), range (the tree planners, 0 =
+// Parameters (scenario `planners.ompl-*`): time_limit (s; unset: the run's own limit, or 10 s when the
+// run has none, so OMPL never runs unbounded and --time-limit 30 gives it 30 s), range (the tree planners, 0 =
 // OMPL's default), k (PRM neighbours, 0 = OMPL's default), first_solution (optimizing planners, default
 // true; false runs them until the time limit).
 // Determinism: sampling uses our seeded generator and each planner's own generator is seeded from the
@@ -86,7 +87,8 @@ class SeededSampler final : public ob::StateSampler {
 };
 
 struct OmplOptions {
-  double time_limit = 10;  // s; the run's Termination may end it sooner
+  double time_limit = -1;  // s; <= 0: the run's limit, or kDefaultTimeLimit without one
+  static constexpr double kDefaultTimeLimit = 10;
   double range = 0;        // the tree planners' range; 0: OMPL's default
   int k = 0;               // PRM neighbours; 0: OMPL's default
   bool first_solution = true;  // optimizing planners stop at their first solution
@@ -138,7 +140,10 @@ class OmplPlanner final : public Planner {
     planner->setProblemDefinition(pdef);
     planner->setup();
     const auto t0 = Clock::now();
-    const Termination until = Termination::when([&stop] { return stop(); }, Termination::after(options_.time_limit));
+    const double own_limit = options_.time_limit > 0 ? options_.time_limit
+                             : stop.hasDeadline()   ? std::numeric_limits<double>::infinity()
+                                                    : OmplOptions::kDefaultTimeLimit;
+    const Termination until = Termination::when([&stop] { return stop(); }, Termination::after(own_limit));
     const ob::PlannerStatus status = planner->solve(ob::PlannerTerminationCondition([&until] { return until(); }));
     result.times.query_ms += msSince(t0);
     // Counting copies the roadmap out (1.4 s for ompl-prm's 69k milestones after a 2 s timeout):
@@ -165,7 +170,10 @@ class OmplPlanner final : public Planner {
       result.status = status == ob::PlannerStatus::TIMEOUT || status == ob::PlannerStatus::APPROXIMATE_SOLUTION
                           ? PlanStatus::kTimeout
                           : PlanStatus::kFailed;
-      result.message = std::string("OMPL: ") + status.asString();
+      // RRTConnect's nearest pair when the limit ends it is an "approximate solution": not one.
+      result.message = result.status == PlanStatus::kTimeout
+                           ? "time limit reached without a solution (OMPL: " + status.asString() + ")"
+                           : std::string("OMPL: ") + status.asString();
     }
     // OMPL 1.5's LazyPRM frees its roadmap's states in clear(), not in its destructor.
     planner->clear();

@@ -302,7 +302,7 @@ void SvmpPlanner::fillCounters(PlanResult& result) const {
 }
 
 bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node, int samples, cspace::Rng& rng,
-                              const Termination& stop, PlanResult& result) {
+                              const Termination& stop, PlanResult& result, bool adaptive_range) {
   // The components hold the lazy roadmap's unchecked edges. Where the joined path does not hold, its
   // blocked edges are gone and the trees grow on from the components left, for as many samples as the
   // last join took, at least a tenth of them: a join found quickly is likely found again quickly
@@ -314,7 +314,7 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
   for (int left = samples; left > 0 && !stop();) {
     const TreeConnectResult grown =
         connectByTrees(with_query, with_query.component(start_node), with_query.component(goal_node), context_,
-                       options_.tree_range, left, rng, stop);
+                       options_.tree_range, left, rng, stop, adaptive_range);
     // The joining sample counts too.
     left = std::min(left - grown.samples - 1, std::max(grown.samples + 1, samples / 10));
     if (!grown.connected) return false;
@@ -458,16 +458,20 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     // (bench/unseen/crs6_partition: 3 of 60 seeds failed after 40 rounds, RRTConnect solved all 60;
     // an arm deep in a sleeve and a sphere in a building, where RRTConnect grows 23k nodes: 1 of 30
     // failed with one size). A bound of work, not of time: the same seed fails the same way under
-    // any time limit, and a query no path answers costs about 15x one size's trees.
+    // any time limit, and a query no path answers costs about 15x one size's trees. Their step adapts
+    // to the clutter (connectByTrees): with OMPL's fixed range, a 4-link arm hooking from one wall top
+    // to the other under a ceiling failed 6 of 20 seeds here, where RRTConnect spent up to 250k checks
+    // (docs/reproduction.md, thirty-first session); adapting the earlier trees too made panda_shelf's
+    // pockets dearer (mean checks 1.8x).
     constexpr int kLastTreesFactor = 10, kLastTreesDoublings = 3;
     if (!repaired && options_.repair_rounds > 0 && options_.lazy && options_.lazy_trees > 0 && !stop()) {
       const int first = kLastTreesFactor * options_.lazy_trees, last = first << kLastTreesDoublings;
       bool joined = false;
       for (int samples = first; samples <= last && !joined && !stop(); samples *= 2)
-        joined = joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result);
+        joined = joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result, true);
       if (joined) break;
-      why += std::string(why.empty() ? "" : "; ") + "trees of up to " + std::to_string(last) +
-             " samples did not join them";
+      why += std::string(why.empty() ? "" : "; ") + "trees of " + std::to_string(first) + " to " +
+             std::to_string(last) + " uniform samples did not join them";
     }
     if (stop()) {
       result.status = PlanStatus::kTimeout;

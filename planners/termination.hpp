@@ -35,6 +35,8 @@ class Termination {
   }
 
   bool operator()() const { return (deadline_ && Clock::now() >= *deadline_) || (condition_ && condition_()); }
+  // True when a wall-clock deadline bounds it (a run's --time-limit), not only a caller's condition.
+  bool hasDeadline() const { return deadline_.has_value(); }
   // As a callable for code outside planners/ (the obstacle sampler's stop hook).
   std::function<bool()> asFunction() const { return [t = *this] { return t(); }; }
 

@@ -13,6 +13,10 @@
 // (planners/svmp_repair.cpp) runs it in a round whose SVM-guided nodes did not join the start's and
 // the goal's components: where the decision boundaries do not lead through a passage, the trees
 // still explore it.
+// With `adaptive_range`, the step adapts to the clutter: halved (down to a sixteenth) while fewer
+// than 1 in 16 of the last 32 exploring steps were free, doubled back while more than half were; an
+// arm among close walls takes steps of OMPL's range (a fifth of the space's diagonal, 2.5 rad for
+// four joints) that nearly all collide. SVMP uses it in the trees it grows last, before a query fails.
 // Every motion is checked by the context's validator; new nodes and edges join the roadmap checked
 // (the query proves the edges its path uses).
 #include <vector>
@@ -34,6 +38,6 @@ struct TreeConnectResult {
 // Returns at once when either set is empty or range is not positive.
 TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vector<int> b,
                                  const PlanningContext& context, double range, int samples, cspace::Rng& rng,
-                                 const Termination& stop = {});
+                                 const Termination& stop = {}, bool adaptive_range = false);
 
 }  // namespace svmp::planners
