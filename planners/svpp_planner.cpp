@@ -308,12 +308,23 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     result.path.clear();
     return;
   }
+  // Why each pattern failed, and why no more were tried: a user reads which limit to raise.
   std::map<std::string, int> reasons;
   for (const SvppTrial& t : trace_.trials)
-    ++reasons[t.follow.reached() ? (t.valid ? "not certified" : "in collision")
-                                 : followStatusName(t.follow.status)];
+    ++reasons[t.follow.reached() ? (t.valid ? "reached the goal but not certified"
+                                            : "reached the goal through an obstacle")
+              : t.follow.status == FollowStatus::kStepLimit
+                  ? "stopped at max_steps (" +
+                        std::to_string(options_.following(query, context_.space.lower(), context_.space.upper()).max_steps) + ")"
+                  : followStatusName(t.follow.status)];
+  const int tried_count = static_cast<int>(trace_.trials.size());
   std::ostringstream why;
-  why << "no path in " << trace_.trials.size() << " patterns (";
+  why << "no path in " << tried_count << " labelling patterns ("
+      << (tried_count >= options_.max_patterns ? "max_patterns"
+          : static_cast<double>(tried_count) >= distinct
+              ? "every pattern of the " + std::to_string(obstacles) + " merged obstacles"
+              : "no untried pattern found")
+      << "; ";
   for (auto it = reasons.begin(); it != reasons.end(); ++it)
     why << (it == reasons.begin() ? "" : ", ") << it->first << ": " << it->second;
   why << ")";

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 #include <numbers>
+#include <regex>
 #include <sstream>
 
 #include "cspace/certified_motion_validator.hpp"
@@ -322,6 +323,24 @@ TEST(SvppTest, AStopEndsTheMergingOfOverlappingObstacles) {
   int polls = 0;
   EXPECT_TRUE(mergeObstacles(parts, [&] { return ++polls > 10; }).empty());
   EXPECT_EQ(polls, 11);
+}
+
+// A wall across the whole space: no pattern of its one (merged) obstacle gives a path, and the failure
+// says why the search ended and why each pattern failed, the counts adding up to the patterns tried.
+TEST(SvppTest, AFailureSaysWhichLimitEndedTheSearch) {
+  const CertifiedWorld w(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles: [{name: wall, shape: box, size: [0.1, 1.2, 1], position: [0.5, 0.5, 0]}]\n"
+      "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n");
+  const PlanResult r = w.planner()->solve(w.world->query(), 1);
+  ASSERT_EQ(r.status, PlanStatus::kFailed);
+  EXPECT_NE(r.message.find("no path in 2 labelling patterns (every pattern of the 1 merged obstacles; "),
+            std::string::npos) << r.message;
+  const std::regex count(": ([0-9]+)[,)]");
+  int counted = 0;
+  for (auto it = std::sregex_iterator(r.message.begin(), r.message.end(), count); it != std::sregex_iterator(); ++it)
+    counted += std::stoi((*it)[1]);
+  EXPECT_EQ(counted, 2) << r.message;
 }
 
 TEST(SvppTest, TheTimeLimitStopsASurfaceFollowing) {
