@@ -302,19 +302,22 @@ void SvmpPlanner::fillCounters(PlanResult& result) const {
 }
 
 bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node, int samples, cspace::Rng& rng,
-                              const Termination& stop, PlanResult& result, bool adaptive_range) {
+                              const Termination& stop, PlanResult& result) {
   // The components hold the lazy roadmap's unchecked edges. Where the joined path does not hold, its
   // blocked edges are gone and the trees grow on from the components left, for as many samples as the
   // last join took, at least a tenth of them: a join found quickly is likely found again quickly
   // (panda_shelf's 100 queries, seed 1: its 6th query 15.3 -> 2.5 ms), one found late would cost as
   // much again where passages wind (crs6_partition); after a join in 2 samples, 3 grow too little
   // (Fig 4.4: 8% fewer checks with the tenth).
+  // Their step adapts to the clutter (connectByTrees): with OMPL's fixed range a 4-link arm hooking
+  // from one wall top to the other under a ceiling failed 6 of 20 seeds, and Fig 4.12's trees grew
+  // 0-1 nodes in 450 samples (median 34 -> 6 ms; docs/reproduction.md, thirty-first session).
   const int first = std::max(start_node, goal_node) + 1;
   int linked = first;
   for (int left = samples; left > 0 && !stop();) {
     const TreeConnectResult grown =
         connectByTrees(with_query, with_query.component(start_node), with_query.component(goal_node), context_,
-                       options_.tree_range, left, rng, stop, adaptive_range);
+                       options_.tree_range, left, rng, stop, true);
     // The joining sample counts too.
     left = std::min(left - grown.samples - 1, std::max(grown.samples + 1, samples / 10));
     if (!grown.connected) return false;
@@ -458,17 +461,13 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     // (bench/unseen/crs6_partition: 3 of 60 seeds failed after 40 rounds, RRTConnect solved all 60;
     // an arm deep in a sleeve and a sphere in a building, where RRTConnect grows 23k nodes: 1 of 30
     // failed with one size). A bound of work, not of time: the same seed fails the same way under
-    // any time limit, and a query no path answers costs about 15x one size's trees. Their step adapts
-    // to the clutter (connectByTrees): with OMPL's fixed range, a 4-link arm hooking from one wall top
-    // to the other under a ceiling failed 6 of 20 seeds here, where RRTConnect spent up to 250k checks
-    // (docs/reproduction.md, thirty-first session); adapting the earlier trees too made panda_shelf's
-    // pockets dearer (mean checks 1.8x).
+    // any time limit, and a query no path answers costs about 15x one size's trees.
     constexpr int kLastTreesFactor = 10, kLastTreesDoublings = 3;
     if (!repaired && options_.repair_rounds > 0 && options_.lazy && options_.lazy_trees > 0 && !stop()) {
       const int first = kLastTreesFactor * options_.lazy_trees, last = first << kLastTreesDoublings;
       bool joined = false;
       for (int samples = first; samples <= last && !joined && !stop(); samples *= 2)
-        joined = joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result, true);
+        joined = joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result);
       if (joined) break;
       why += std::string(why.empty() ? "" : "; ") + "trees of " + std::to_string(first) + " to " +
              std::to_string(last) + " uniform samples did not join them";

@@ -46,9 +46,9 @@ TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vect
   const size_t roots_a = a.size(), roots_b = b.size();
   Tree first{std::move(a), roots_a}, second{std::move(b), roots_b};
   Tree *explore = &first, *join = &second;
-  // The step adapts to the clutter (tree_connect.hpp): halved while fewer than 1 in 16 of the last
-  // kWindow exploring steps were free, doubled back while more than half were.
-  constexpr int kWindow = 32, kLeastShare = 16, kMaxHalvings = 4;
+  // The step adapts to the clutter (tree_connect.hpp): halved while at most one of the last kWindow
+  // exploring steps was free, doubled back while more than half were.
+  constexpr int kWindow = 128, kLeastShare = 64, kMaxHalvings = 4;
   const double longest = range;
   int tried = 0, free = 0;
   for (; out.samples < samples && !stop(); ++out.samples) {
