@@ -6,8 +6,8 @@
 // planners (RRT*, FMT*, Informed RRT*) stop at their first solution by default (path length objective
 // with an infinite cost threshold), as in Das & Yip 2019 sec. IV-B. OMPL works on coordinates scaled
 // by sqrt(w), where its Euclidean distance is the weighted metric of thesis eq. 4.3.
-// Parameters (scenario `planners.ompl-*`): time_limit (s; unset: the run's own limit, or 10 s when the
-// run has none, so OMPL never runs unbounded and --time-limit 30 gives it 30 s), range (the tree planners, 0 =
+// Parameters (scenario `planners.ompl-*`): time_limit (s; 0, the default: the run's own limit, or 10 s
+// when the run has none, so OMPL never runs unbounded and --time-limit 30 gives it 30 s), range (the tree planners, 0 =
 // OMPL's default), k (PRM neighbours, 0 = OMPL's default), first_solution (optimizing planners, default
 // true; false runs them until the time limit).
 // Determinism: sampling uses our seeded generator and each planner's own generator is seeded from the
@@ -87,7 +87,7 @@ class SeededSampler final : public ob::StateSampler {
 };
 
 struct OmplOptions {
-  double time_limit = -1;  // s; <= 0: the run's limit, or kDefaultTimeLimit without one
+  double time_limit = 0;  // s; 0: the run's limit, or kDefaultTimeLimit without one
   static constexpr double kDefaultTimeLimit = 10;
   double range = 0;        // the tree planners' range; 0: OMPL's default
   int k = 0;               // PRM neighbours; 0: OMPL's default
@@ -95,7 +95,7 @@ struct OmplOptions {
 
   static OmplOptions fromParameters(const cspace::ParameterSet& params) {
     OmplOptions o;
-    o.time_limit = params.getDouble("time_limit", o.time_limit, 1e-3, 1e6);
+    o.time_limit = params.getDouble("time_limit", o.time_limit, 0.0, 1e6);
     o.range = params.getDouble("range", o.range, 0.0, 1e6);
     o.k = static_cast<int>(params.getInt("k", o.k, 0, 10000));
     o.first_solution = params.getBool("first_solution", o.first_solution);

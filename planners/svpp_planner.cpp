@@ -251,8 +251,16 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   std::set<Pattern> tried;
   Pattern pattern = initialPattern(obstacles_, trace_.frame);
   double best_length = std::numeric_limits<double>::infinity();
-  while (static_cast<int>(tried.size()) < options_.max_patterns &&
-         static_cast<double>(tried.size()) < distinct) {
+  const char* ended = "no untried pattern found";  // why the search stopped, for a failure's message
+  while (true) {
+    if (static_cast<int>(tried.size()) >= options_.max_patterns) {
+      ended = "max_patterns";
+      break;
+    }
+    if (static_cast<double>(tried.size()) >= distinct) {
+      ended = "every pattern of the merged obstacles";
+      break;
+    }
     if (stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached after " + std::to_string(tried.size()) + " patterns";
@@ -262,14 +270,20 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     trace_.trials.push_back(tryPattern(query, pattern, best_length, stop, result.times));
     if (trace_.trials.back().valid)
       best_length = std::min(best_length, trace_.trials.back().follow.length);
-    if (static_cast<int>(tried.size()) >= wanted && std::isfinite(best_length)) break;
+    if (static_cast<int>(tried.size()) >= wanted && std::isfinite(best_length)) {
+      ended = "enough patterns gave a path, none certified";
+      break;
+    }
     if (obstacles == 0) break;
     std::uniform_int_distribution<int> pick(0, obstacles - 1);
     for (int attempt = 0; attempt < 100000 && tried.count(pattern); ++attempt) {
       const int flip = pick(rng);
       pattern[flip] = !pattern[flip];
     }
-    if (tried.count(pattern)) break;
+    if (tried.count(pattern)) {  // 100,000 flips found none untried
+      if (static_cast<double>(tried.size()) >= distinct) ended = "every pattern of the merged obstacles";
+      break;
+    }
   }
 
   // The shortest valid path that the certifier proves.
@@ -309,22 +323,17 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     return;
   }
   // Why each pattern failed, and why no more were tried: a user reads which limit to raise.
+  const int max_steps = options_.following(query, context_.space.lower(), context_.space.upper()).max_steps;
   std::map<std::string, int> reasons;
   for (const SvppTrial& t : trace_.trials)
     ++reasons[t.follow.reached() ? (t.valid ? "reached the goal but not certified"
                                             : "reached the goal through an obstacle")
               : t.follow.status == FollowStatus::kStepLimit
-                  ? "stopped at max_steps (" +
-                        std::to_string(options_.following(query, context_.space.lower(), context_.space.upper()).max_steps) + ")"
+                  ? "stopped at max_steps (" + std::to_string(max_steps) + ")"
                   : followStatusName(t.follow.status)];
-  const int tried_count = static_cast<int>(trace_.trials.size());
   std::ostringstream why;
-  why << "no path in " << tried_count << " labelling patterns ("
-      << (tried_count >= options_.max_patterns ? "max_patterns"
-          : static_cast<double>(tried_count) >= distinct
-              ? "every pattern of the " + std::to_string(obstacles) + " merged obstacles"
-              : "no untried pattern found")
-      << "; ";
+  why << "no path in " << trace_.trials.size() << " labelling patterns of " << obstacles
+      << " merged obstacles (" << ended << "; ";
   for (auto it = reasons.begin(); it != reasons.end(); ++it)
     why << (it == reasons.begin() ? "" : ", ") << it->first << ": " << it->second;
   why << ")";

@@ -46,23 +46,23 @@ TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vect
   const size_t roots_a = a.size(), roots_b = b.size();
   Tree first{std::move(a), roots_a}, second{std::move(b), roots_b};
   Tree *explore = &first, *join = &second;
-  // The step adapts to the clutter (tree_connect.hpp): halved while at most one of the last kWindow
-  // exploring steps was free, doubled back while more than half were.
-  constexpr int kWindow = 128, kLeastShare = 64, kMaxHalvings = 4;
+  // The step adapts to the clutter (tree_connect.hpp): halved while at most kMostFreeToHalve of the
+  // last kWindow exploring steps were free, doubled back while more than half were.
+  constexpr int kWindow = 128, kMostFreeToHalve = 1, kMaxHalvings = 4;
   const double longest = range;
-  int tried = 0, free = 0;
+  int tried = 0, held = 0;
   for (; out.samples < samples && !stop(); ++out.samples) {
     if (out.samples > 0 && join->grown() <= explore->grown()) std::swap(explore, join);
     if (adaptive_range && tried == kWindow) {
-      if (free * kLeastShare < tried && range > longest / (1 << kMaxHalvings)) range /= 2;
-      else if (2 * free > tried && range < longest) range *= 2;
-      tried = free = 0;
+      if (held <= kMostFreeToHalve && range > longest / (1 << kMaxHalvings)) range /= 2;
+      else if (2 * held > tried && range < longest) range *= 2;
+      tried = held = 0;
     }
     const Eigen::VectorXd q = space.sampleUniform(rng);
     const int grown = extend(roadmap, explore->nodes, nearestIn(roadmap, explore->nodes, q, space), q, context, range);
     ++tried;
     if (grown < 0) continue;
-    ++free;
+    ++held;
     ++out.added;
     const Eigen::VectorXd target = roadmap.node(grown);
     for (int tip = nearestIn(roadmap, join->nodes, target, space);;) {

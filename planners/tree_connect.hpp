@@ -16,7 +16,9 @@
 // With `adaptive_range`, the step adapts to the clutter: halved (down to a sixteenth) while at most
 // one of the last 128 exploring steps was free, doubled back while more than half were; an arm among
 // close walls takes steps of OMPL's range (a fifth of the space's diagonal, 2.5 rad for four joints)
-// that nearly all collide. SVMP's query trees use it (its repair's trees keep the range). Halving
+// that nearly all collide. The other tree's connecting steps take the same range (full-range
+// connecting steps did not help panda_shelf). The range starts afresh with each call. SVMP's query
+// trees use it (its repair's trees keep the range). Halving
 // after 32 steps with fewer than 2 free made panda_shelf's joins dearer (its rare long steps out of a
 // shelf's pocket are what join the trees: mean checks 1.8x over 60 seeds; 1.03x so).
 // Every motion is checked by the context's validator; new nodes and edges join the roadmap checked

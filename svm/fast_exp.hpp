@@ -14,7 +14,8 @@ inline constexpr double kInverseFactorial[13] = {
     1.0 / 120.0,   1.0 / 720.0,    1.0 / 5040.0,    1.0 / 40320.0,    1.0 / 362880.0,
     1.0 / 3628800.0, 1.0 / 39916800.0, 1.0 / 479001600.0};
 
-// p * r + c as two roundings; the dispatched loops pass a fused multiply-add instead (svm/simd_loops.cpp).
+// p * r + c (two roundings where the compiler does not contract them; the dispatched loops, compiled
+// without contraction, pass a fused multiply-add instead: svm/simd_loops.cpp).
 struct MulThenAdd {
   template <class D>
   D operator()(D p, D r, D c) const {

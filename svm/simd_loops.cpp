@@ -1,6 +1,7 @@
-// Vectors wider than the baseline ISA are only used inside target("avx2") / target("avx512f")
-// functions (and in the always-inlined exponential of svm/fast_exp.hpp they call), so no ABI for
-// them is ever used.
+// Vectors wider than the baseline ISA are used inside target("avx2,fma") / target("avx512f,fma")
+// functions and the generic templates those inline or flatten in; where a call might cross between
+// code of different targets (fmaddInto, in an unoptimised build) they go by reference, so no
+// vector-passing ABI is relied on.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 #include "svm/simd_loops.hpp"
@@ -8,6 +9,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -81,24 +83,30 @@ SVMP_INLINE typename V<L>::D iota(double start) {
 // a b + c rounded once: the FMA instructions on AVX-512 and AVX2, the C library's fma (which rounds
 // alike) lane by lane on SSE2 machines, which have no FMA. Explicit, as the file is compiled without
 // contraction (svm/CMakeLists.txt): every width and tail fuses the same operations, so all give the
-// same bits. Not always_inline: intrinsics of a target cannot be forced into the generic templates
-// that call them; the entry points (SVMP_ENTRY) flatten them in.
+// same bits. fmaddInto is not always_inline (intrinsics of a target cannot be forced into the generic
+// templates, which have none); the entry points (SVMP_ENTRY) flatten it in, and its vectors go by
+// reference, so an unoptimised build (no flattening) passes no wide vector between code of
+// different targets.
 #define SVMP_AVX2 __attribute__((target("avx2,fma")))
 #define SVMP_ENTRY __attribute__((flatten))
-SVMP_AVX512 inline V<8>::D fmadd(V<8>::D a, V<8>::D b, V<8>::D c) {
-  return reinterpret_cast<V<8>::D>(_mm512_fmadd_pd(reinterpret_cast<__m512d>(a), reinterpret_cast<__m512d>(b),
-                                                   reinterpret_cast<__m512d>(c)));
+SVMP_AVX512 inline void fmaddInto(V<8>::D& r, const V<8>::D& a, const V<8>::D& b, const V<8>::D& c) {
+  r = _mm512_fmadd_pd(a, b, c);
 }
-SVMP_AVX2 inline V<4>::D fmadd(V<4>::D a, V<4>::D b, V<4>::D c) {
-  return reinterpret_cast<V<4>::D>(_mm256_fmadd_pd(reinterpret_cast<__m256d>(a), reinterpret_cast<__m256d>(b),
-                                                   reinterpret_cast<__m256d>(c)));
+SVMP_AVX2 inline void fmaddInto(V<4>::D& r, const V<4>::D& a, const V<4>::D& b, const V<4>::D& c) {
+  r = _mm256_fmadd_pd(a, b, c);
 }
-inline V<2>::D fmadd(V<2>::D a, V<2>::D b, V<2>::D c) {
-  return V<2>::D{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1])};
+inline void fmaddInto(V<2>::D& r, const V<2>::D& a, const V<2>::D& b, const V<2>::D& c) {
+  r = V<2>::D{__builtin_fma(a[0], b[0], c[0]), __builtin_fma(a[1], b[1], c[1])};
+}
+template <class D>
+SVMP_INLINE D fmadd(const D& a, const D& b, const D& c) {
+  D r;
+  fmaddInto(r, a, b, c);
+  return r;
 }
 template <int L>
 struct FusedMulAdd {
-  typename V<L>::D operator()(typename V<L>::D p, typename V<L>::D r, typename V<L>::D c) const {
+  SVMP_INLINE typename V<L>::D operator()(typename V<L>::D p, typename V<L>::D r, typename V<L>::D c) const {
     return fmadd(p, r, c);
   }
 };
@@ -109,7 +117,7 @@ struct ScalarFusedMulAdd {
 // svm/fast_exp.hpp lane-wise, its polynomial fused. kFloat: the result is stored as float (kernel
 // cache), so degree 8.
 template <int L, bool kFloat = false>
-inline typename V<L>::D vexp(typename V<L>::D x) {
+SVMP_INLINE typename V<L>::D vexp(typename V<L>::D x) {
   return expNonPositiveOf<kFloat ? 8 : 12, typename V<L>::D, typename V<L>::I>(x, FusedMulAdd<L>{});
 }
 
@@ -201,7 +209,9 @@ SVMP_INLINE void selectJTail(int t, int m, const double* low, const double* yG, 
 }
 
 // The WSS2 objective -(gmax + y_t G_t)^2 / quad_t is compared as a fraction (a^2 qb > b^2 qa), not
-// divided: a vector division per entry made this loop the most expensive of an iteration.
+// divided: a vector division per entry made this loop the most expensive of an iteration. Lanes are
+// merged by the quotient, so two objectives within a rounding of each other may be chosen apart by
+// different widths (the one exception to their giving the same bits).
 template <int L>
 SVMP_INLINE SelectJ selectJImpl(int m, const double* low, const double* yG, const double* diag,
                                 const float* Ki, double kii, double gmax, double tau) {
@@ -253,7 +263,7 @@ SVMP_INLINE void updateGradientImpl(int m, double* yG, const float* Ki, const fl
 // Two vectors per step: the exponential is a long dependency chain, two chains hide its latency.
 // Distances accumulate in registers across the d coordinate rows (unit stride in each row).
 template <int L, typename Out>
-inline void rbfColumnImpl(const double* coords, long stride, int d, const double* z,
+SVMP_INLINE void rbfColumnImpl(const double* coords, long stride, int d, const double* z,
                                double neg_gamma, int len, Out* out) {
   using D = typename V<L>::D;
   constexpr bool kFloat = sizeof(Out) == sizeof(float);
@@ -290,7 +300,7 @@ inline void rbfColumnImpl(const double* coords, long stride, int d, const double
 // 8 / L vectors, one per group of L lanes) and the lanes added in order at the end, so the rounding,
 // and with it every decision the sum feeds, is the same on AVX-512, AVX2 and SSE2 machines.
 template <int L, bool kGrad, int kD = 0>
-inline double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const double* q,
+SVMP_INLINE double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const double* q,
                                        double gamma, double r2, double* grad) {
   using D = typename V<L>::D;
   constexpr int kMaxDim = kD > 0 ? kD : 16;
@@ -328,7 +338,8 @@ inline double truncatedRbfSumImpl(const BlockedSupportVectors& sv, const double*
         const int s = s8 + a * L;
         D dist = zero;
         for (int k = 0; k < d; ++k) {
-          // q - x like the brute-force reference, so the same terms pass the radius test
+          // q - x like the brute-force reference; the squares are summed fused (unfused cost 1.2-1.4x
+          // here), so a term within a rounding of the radius may pass one radius test and not the other
           const D c = splat<L>(q[k]) - load<L>(sv.xs + k * sv.stride + s);
           dist = fmadd(c, c, dist);
         }
@@ -382,7 +393,7 @@ SVMP_AVX2 SVMP_ENTRY void rbfColumnAvx2(const double* coords, long stride, int d
 }
 
 template <int L, bool kGrad>
-inline double truncatedRbfSumDispatch(const BlockedSupportVectors& sv, const double* q,
+SVMP_INLINE double truncatedRbfSumDispatch(const BlockedSupportVectors& sv, const double* q,
                                            double gamma, double r2, double* grad) {
   switch (sv.d) {
     case 2:
@@ -514,11 +525,13 @@ SVMP_AVX512 SVMP_ENTRY double truncatedRbfSumAvx512(const BlockedSupportVectors&
               : truncatedRbfSumDispatch<8, false>(sv, q, gamma, r2, grad);
 }
 
-// SVMP_SIMD=avx2 keeps a machine with AVX-512 on the 4-lane loops (to measure what 8 lanes give, and
-// to reproduce an AVX2 machine's results); SVMP_SIMD=sse2 on the 2-lane ones (the tests run all three).
+// SVMP_SIMD=avx2 keeps a machine with AVX-512 on the 4-lane loops (to measure what 8 lanes give);
+// SVMP_SIMD=sse2 on the 2-lane ones (the tests run all three); unset or any other value: the widest
+// this machine has.
 const std::string kSimdCap = std::getenv("SVMP_SIMD") ? std::getenv("SVMP_SIMD") : "";
 const bool kHaveAvx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && kSimdCap != "sse2";
-const bool kHaveAvx512 = __builtin_cpu_supports("avx512f") && kSimdCap != "avx2" && kSimdCap != "sse2";
+const bool kHaveAvx512 =
+    __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma") && kSimdCap != "avx2" && kSimdCap != "sse2";
 
 }  // namespace
 
@@ -579,6 +592,7 @@ namespace svmp::svm::loops {
 
 double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double gamma, double r2,
                        double* grad) {
+  assert(sv.block % 8 == 0 && "blocks of a multiple of 8 columns (svm/simd_loops.hpp)");
   if (kHaveAvx512) return truncatedRbfSumAvx512(sv, q, gamma, r2, grad);
   if (kHaveAvx2) return truncatedRbfSumAvx2(sv, q, gamma, r2, grad);
   return grad ? truncatedRbfSumDispatch<2, true>(sv, q, gamma, r2, grad)

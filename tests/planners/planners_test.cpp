@@ -361,7 +361,7 @@ TEST(MakePlanner, OutOfRangeOrMalformedParameterNamesTheField) {
   expectScenarioError("svmp", {{"C", "0"}}, "planners.svmp.C");
   expectScenarioError("prm", {{"samples", "0"}}, "planners.prm.samples");
 #ifdef SVMP_WITH_OMPL
-  expectScenarioError("ompl-prm", {{"time_limit", "0"}}, "planners.ompl-prm.time_limit");
+  expectScenarioError("ompl-prm", {{"time_limit", "-1"}}, "planners.ompl-prm.time_limit");
 #endif
 }
 

@@ -334,7 +334,7 @@ TEST(SvppTest, AFailureSaysWhichLimitEndedTheSearch) {
       "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n");
   const PlanResult r = w.planner()->solve(w.world->query(), 1);
   ASSERT_EQ(r.status, PlanStatus::kFailed);
-  EXPECT_NE(r.message.find("no path in 2 labelling patterns (every pattern of the 1 merged obstacles; "),
+  EXPECT_NE(r.message.find("no path in 2 labelling patterns of 1 merged obstacles (every pattern of the merged obstacles; "),
             std::string::npos) << r.message;
   const std::regex count(": ([0-9]+)[,)]");
   int counted = 0;

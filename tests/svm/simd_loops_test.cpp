@@ -2,7 +2,8 @@
 // references, at every length from 0 to 70 (the 8- and 16-entry steps and their tails), with ties.
 // Values are compared bit for bit where the loops promise the same bits on every instruction set (ctest
 // runs these tests on all three): the references fuse a multiply and an add where the loops do (fma)
-// and round every other operation alone (-ffp-contract=off for both, tests/svm/CMakeLists.txt).
+// and round every other operation alone (-ffp-contract=off for both, tests/svm/CMakeLists.txt). The
+// exception is selectJ's choice between near-equal objectives (below).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -48,6 +49,9 @@ Entries randomEntries(int m, bool tied, std::mt19937_64& rng) {
   return e;
 }
 
+// Exact ties only: objectives within a rounding of each other may be chosen differently by width
+// (within a lane the loops compare cross-products num * quad', across lanes the quotients), the one
+// place where the instruction sets may part (docs/architecture.md, "Determinism").
 TEST(SimdLoops, SelectJIsTheSmallestObjectiveWithTheSmallestIndexOnTies) {
   std::mt19937_64 rng(3);
   for (bool tied : {false, true})
