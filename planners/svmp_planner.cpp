@@ -315,9 +315,10 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
   const int first = std::max(start_node, goal_node) + 1;
   int linked = first;
   for (int left = samples; left > 0 && !stop();) {
+    TreeStep step(options_.tree_range);  // afresh each call: panda_shelf's joins need the long steps
     const TreeConnectResult grown =
         connectByTrees(with_query, with_query.component(start_node), with_query.component(goal_node), context_,
-                       options_.tree_range, left, rng, stop, true);
+                       options_.tree_range, left, rng, stop, &step);
     // The joining sample counts too.
     left = std::min(left - grown.samples - 1, std::max(grown.samples + 1, samples / 10));
     if (!grown.connected) return false;
@@ -373,6 +374,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
                          PlanResult& result) {
   const auto t0 = Clock::now();
   cspace::Rng rng(seed ^ 0xA5A5A5A5ULL), tree_rng(seed ^ 0x5A5A5A5AULL);
+  repair_step_.emplace(options_.tree_range);
   std::string why = options_.repair_rounds == 0 ? "repair_rounds is 0" : "";  // why still not connected
   // A round that grows the start's or the goal's component is progress and costs no budget (up to
   // kMaxRoundsFactor x repair_rounds rounds in all); one without progress spends a round and doubles

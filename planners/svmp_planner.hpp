@@ -20,6 +20,7 @@
 #include "planners/planner.hpp"
 #include "planners/risk_function.hpp"
 #include "planners/roadmap.hpp"
+#include "planners/tree_connect.hpp"
 
 namespace svmp::planners {
 
@@ -216,6 +217,9 @@ class SvmpPlanner final : public Planner {
   std::vector<bool> grown_by_trees_;  // roadmap_ nodes the repair's trees added (by index; shorter: no)
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
   std::vector<std::pair<Eigen::VectorXd, int>> uncentred_;  // deferred descent ends and their classes
+  // The step the repair's trees adapt (connectByTrees), carried across a query's rounds: a round's
+  // 100 samples are fewer than one window.
+  std::optional<TreeStep> repair_step_;
   bool eager_pass_run_ = false;    // eagerPassRun()
   int tree_answers_ = 0;           // treeAnswers()
 };

@@ -223,7 +223,7 @@ bool SvmpPlanner::repair(Roadmap& with_query, int start_node, int goal_node, dou
     const int first = roadmap_.numNodes();
     const TreeConnectResult trees =
         connectByTrees(roadmap_, roadmap_.component(start_root), roadmap_.component(goal_root), context_,
-                       options_.tree_range, options_.repair_samples, tree_rng, stop);
+                       options_.tree_range, options_.repair_samples, tree_rng, stop, &*repair_step_);
     grown_by_trees_.resize(first, false);
     grown_by_trees_.resize(roadmap_.numNodes(), true);
     if (trees.added > 0) {

@@ -30,10 +30,20 @@ int extend(Roadmap& roadmap, std::vector<int>& tree, int from, const Eigen::Vect
 
 }  // namespace
 
+void TreeStep::record(bool free) {
+  ++tried;
+  held += free;
+  if (tried < kWindow) return;
+  if (held <= kMostFreeToHalve && range > longest / (1 << kMaxHalvings)) range /= 2;
+  else if (2 * held > tried && range < longest) range *= 2;
+  tried = held = 0;
+}
+
 TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vector<int> b,
                                  const PlanningContext& context, double range, int samples, cspace::Rng& rng,
-                                 const Termination& stop, bool adaptive_range) {
+                                 const Termination& stop, TreeStep* step) {
   TreeConnectResult out;
+  if (step) range = step->range;
   if (a.empty() || b.empty() || !(range > 0)) return out;
   const cspace::ConfigurationSpace& space = context.space;
   // Balanced (tree_connect.hpp): the tree that has grown fewer nodes in this search explores next,
@@ -46,23 +56,13 @@ TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vect
   const size_t roots_a = a.size(), roots_b = b.size();
   Tree first{std::move(a), roots_a}, second{std::move(b), roots_b};
   Tree *explore = &first, *join = &second;
-  // The step adapts to the clutter (tree_connect.hpp): halved while at most kMostFreeToHalve of the
-  // last kWindow exploring steps were free, doubled back while more than half were.
-  constexpr int kWindow = 128, kMostFreeToHalve = 1, kMaxHalvings = 4;
-  const double longest = range;
-  int tried = 0, held = 0;
   for (; out.samples < samples && !stop(); ++out.samples) {
     if (out.samples > 0 && join->grown() <= explore->grown()) std::swap(explore, join);
-    if (adaptive_range && tried == kWindow) {
-      if (held <= kMostFreeToHalve && range > longest / (1 << kMaxHalvings)) range /= 2;
-      else if (2 * held > tried && range < longest) range *= 2;
-      tried = held = 0;
-    }
+    if (step) range = step->range;
     const Eigen::VectorXd q = space.sampleUniform(rng);
     const int grown = extend(roadmap, explore->nodes, nearestIn(roadmap, explore->nodes, q, space), q, context, range);
-    ++tried;
+    if (step) step->record(grown >= 0);
     if (grown < 0) continue;
-    ++held;
     ++out.added;
     const Eigen::VectorXd target = roadmap.node(grown);
     for (int tip = nearestIn(roadmap, join->nodes, target, space);;) {

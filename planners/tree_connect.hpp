@@ -13,12 +13,13 @@
 // (planners/svmp_repair.cpp) runs it in a round whose SVM-guided nodes did not join the start's and
 // the goal's components: where the decision boundaries do not lead through a passage, the trees
 // still explore it.
-// With `adaptive_range`, the step adapts to the clutter: halved (down to a sixteenth) while at most
+// With a TreeStep, the step adapts to the clutter: halved (down to a sixteenth) while at most
 // one of the last 128 exploring steps was free, doubled back while more than half were; an arm among
 // close walls takes steps of OMPL's range (a fifth of the space's diagonal, 2.5 rad for four joints)
 // that nearly all collide. The other tree's connecting steps take the same range (full-range
-// connecting steps did not help panda_shelf). The range starts afresh with each call. SVMP's query
-// trees use it (its repair's trees keep the range). Halving
+// connecting steps did not help panda_shelf). SVMP's query trees start each call at the full range;
+// its repair's trees carry one TreeStep across a query's rounds, whose 100 samples are fewer than a
+// window (carried in the query trees too, it cost panda_shelf 25% more checks). Halving
 // after 32 steps with fewer than 2 free made panda_shelf's joins dearer (its rare long steps out of a
 // shelf's pocket are what join the trees: mean checks 1.8x over 60 seeds; 1.03x so).
 // Every motion is checked by the context's validator; new nodes and edges join the roadmap checked
@@ -38,10 +39,21 @@ struct TreeConnectResult {
   bool connected = false;  // the trees met: one edge joins the two components
 };
 
-// Grows the trees from the roadmap nodes `a` and `b` (two components) for up to `samples` samples.
+// The step of adaptive trees (above), carried across calls: one query's trees share it.
+struct TreeStep {
+  explicit TreeStep(double longest) : range(longest), longest(longest) {}
+  // Counts one exploring step; at the end of each window of kWindow, halves or doubles the range.
+  void record(bool free);
+  static constexpr int kWindow = 128, kMostFreeToHalve = 1, kMaxHalvings = 4;
+  double range, longest;
+  int tried = 0, held = 0;  // the current window's exploring steps, and how many were free
+};
+
+// Grows the trees from the roadmap nodes `a` and `b` (two components) for up to `samples` samples,
+// with steps of `range`, or of `step`'s adapting range when given (which the call updates).
 // Returns at once when either set is empty or range is not positive.
 TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vector<int> b,
                                  const PlanningContext& context, double range, int samples, cspace::Rng& rng,
-                                 const Termination& stop = {}, bool adaptive_range = false);
+                                 const Termination& stop = {}, TreeStep* step = nullptr);
 
 }  // namespace svmp::planners

@@ -188,7 +188,9 @@ TEST(TreeConnect, AnAdaptiveStepGrowsWhereFixedStepsCollide) {
       Roadmap roadmap;
       const int a = roadmap.addNode(w->query().start), b = roadmap.addNode(w->query().goal);
       cspace::Rng rng(seed);
-      const TreeConnectResult out = connectByTrees(roadmap, {a}, {b}, w->context, range, 20000, rng, {}, adaptive);
+      TreeStep step(range);
+      const TreeConnectResult out =
+          connectByTrees(roadmap, {a}, {b}, w->context, range, 20000, rng, {}, adaptive ? &step : nullptr);
       joined[adaptive] += out.connected;
       added[adaptive] += out.added;
       for (int v = 2; v < roadmap.numNodes(); ++v)
