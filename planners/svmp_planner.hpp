@@ -72,8 +72,8 @@ struct SvmpOptions {
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
   // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
   // nodes): repair_samples uniform samples, steps of
-  // tree_range (weighted metric; kDerived: OMPL's default range for RRTConnect, a fifth of the
-  // space's diagonal).
+  // at most tree_range (weighted metric; kDerived: OMPL's default range for RRTConnect, a fifth of
+  // the space's diagonal), shortened while nearly every step collides (TreeStep).
   bool repair_trees = true;
   double tree_range = kDerived;
   // Share of the interior (non-boundary) obstacle samples the SVMs train on; every boundary sample
