@@ -1,5 +1,5 @@
-// Pieces shared by the AVX-512 loops of svm/simd_loops.cpp and svm/box_loops.cpp; internal to them
-// (target attributes and intrinsics), though installed with the other headers.
+// Pieces shared by the AVX-512 loops of svm/simd_loops.cpp, svm/kernel_loops.cpp and svm/box_loops.cpp;
+// internal to them (target attributes and intrinsics), though installed with the other headers.
 #pragma once
 
 #include <immintrin.h>

@@ -1,6 +1,6 @@
 #pragma once
 // exp(x) for x <= 0, branch-free so loops over arrays vectorise, written once for a scalar double and
-// for GCC vectors of doubles (svm/simd_loops.cpp): Cody-Waite range reduction x = k ln2 + r with
+// for GCC vectors of doubles (svm/kernel_loops.cpp): Cody-Waite range reduction x = k ln2 + r with
 // |r| <= ln2/2, a Taylor polynomial of degree kDegree in r, and 2^k through the exponent bits (k from
 // the bits of the shifted sum, since SSE2/AVX2 cannot convert double to int64). Degree 12: relative
 // error < 2e-16; degree 8: < 3e-10 (enough for values stored as float). Below -700 the result is
@@ -15,7 +15,7 @@ inline constexpr double kInverseFactorial[13] = {
     1.0 / 3628800.0, 1.0 / 39916800.0, 1.0 / 479001600.0};
 
 // p * r + c (two roundings where the compiler does not contract them; the dispatched loops, compiled
-// without contraction, pass a fused multiply-add instead: svm/simd_loops.cpp).
+// without contraction, pass a fused multiply-add instead: svm/kernel_loops.cpp).
 struct MulThenAdd {
   template <class D>
   D operator()(D p, D r, D c) const {

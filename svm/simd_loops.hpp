@@ -1,5 +1,6 @@
-// The O(n) loops of one SMO iteration, the RBF kernel column and the truncated RBF sum, vectorised
-// and dispatched at run time to AVX-512 (8 lanes), AVX2 (4 lanes) or baseline SSE2 (2 lanes);
+// The O(n) loops of one SMO iteration (svm/simd_loops.cpp), the RBF kernel column and the truncated
+// RBF sum (svm/kernel_loops.cpp), vectorised and dispatched at run time to AVX-512 (8 lanes), AVX2
+// (4 lanes) or baseline SSE2 (2 lanes);
 // SVMP_SIMD=avx2 in the environment caps them at AVX2. Working-set selection is WSS2 of Fan, Chen,
 // Lin, JMLR 6 (2005); the gradient update is libsvm's (Chang & Lin 2011, sec. 4.1).
 #pragma once
