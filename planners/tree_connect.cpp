@@ -43,7 +43,6 @@ TreeConnectResult connectByTrees(Roadmap& roadmap, std::vector<int> a, std::vect
                                  const PlanningContext& context, double range, int samples, cspace::Rng& rng,
                                  const Termination& stop, TreeStep* step) {
   TreeConnectResult out;
-  if (step) range = step->range;
   if (a.empty() || b.empty() || !(range > 0)) return out;
   const cspace::ConfigurationSpace& space = context.space;
   // Balanced (tree_connect.hpp): the tree that has grown fewer nodes in this search explores next,
