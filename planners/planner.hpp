@@ -96,6 +96,11 @@ class Planner {
   virtual bool repairable() const { return true; }
   // True for the roadmap planners, whose query begins with the straight motion (queryRoadmap).
   virtual bool triesStraightMotionFirst() const { return false; }
+  // Called by solve() after a blocked straight motion, before the build: true when `result` is final
+  // without one (solved and certified, or the time limit reached).
+  virtual bool answerBeforeBuild(const cspace::Query&, std::uint64_t, const Termination&, PlanResult&) {
+    return false;
+  }
   // Set by solve() when the straight motion was tried before the build and failed: the query need
   // not try it again (it stays blocked, or unproven, on the same obstacles).
   bool straight_motion_blocked_ = false;

@@ -36,6 +36,7 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.repair_trees = params.getBool("repair_trees", o.repair_trees);
   o.lazy_trees = static_cast<int>(params.getInt("lazy_trees", o.lazy_trees, 0, 1000000));
   o.tree_range = params.getDouble("tree_range", o.tree_range, 1e-9, 1e6);
+  o.trees_before_build = static_cast<int>(params.getInt("trees_before_build", o.trees_before_build, 0, 1000000));
   o.interior_fraction = params.getDouble("interior_fraction", o.interior_fraction, 0, 1);
   o.tree_expansions_per_node =
       static_cast<int>(params.getInt("tree_expansions_per_node", o.tree_expansions_per_node, 0, 1000000));
@@ -343,6 +344,34 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
     return true;
   }
   return false;
+}
+
+bool SvmpPlanner::answerBeforeBuild(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+                                    PlanResult& result) {
+  if (options_.trees_before_build <= 0) return false;
+  Roadmap trees;
+  trees.addNode(query.start);
+  trees.addNode(query.goal);
+  cspace::Rng rng(seed ^ 0x3C3C3C3CULL);
+  TreeStep step(options_.tree_range);
+  const TreeConnectResult grown = connectByTrees(trees, {0}, {1}, context_, options_.tree_range,
+                                                 options_.trees_before_build, rng, stop, &step);
+  if (!grown.connected && stop()) {
+    result.status = PlanStatus::kTimeout;
+    result.message = "time limit reached while growing trees before the build";
+    return true;
+  }
+  if (!grown.connected) return false;
+  int checks = 0;
+  const std::vector<int> nodes = provenPath(trees, 0, 1, context_, nullptr, checks, result.times.certify_ms);
+  if (nodes.empty()) return false;
+  for (int v : nodes) result.path.push_back(trees.node(v));
+  result.certified = context_.certifier != nullptr;
+  result.status = PlanStatus::kSolved;
+  result.message.clear();
+  result.milestones = trees.numNodes();  // the trees' nodes, as the rivals' trees are counted
+  result.roadmap_edges = trees.numEdges();
+  return true;
 }
 
 void SvmpPlanner::keepTreeNodes(const Roadmap& with_query, int first) {

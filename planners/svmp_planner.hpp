@@ -69,6 +69,9 @@ struct SvmpOptions {
   // a pocket the roadmap does not reach in 1k-2k (panda_shelf, 100 queries: 0.57-0.79x the time;
   // fourteenth session).
   int lazy_trees = 300;
+  // A single query (solve) whose straight motion is blocked first grows RRT-Connect trees between
+  // start and goal for up to this many samples, before any obstacle is sampled (0: the thesis' build first).
+  int trees_before_build = 0;
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
   // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
   // nodes): repair_samples uniform samples, steps of
@@ -154,6 +157,8 @@ class SvmpPlanner final : public Planner {
  protected:
   bool triesStraightMotionFirst() const override { return true; }
   void buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) override;
+  bool answerBeforeBuild(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
+                         PlanResult& result) override;
   void answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
               PlanResult& result) override;
 
