@@ -1,13 +1,13 @@
 // Vectors wider than the baseline ISA appear only inside target("avx2") / target("avx512f") functions.
 #pragma GCC diagnostic ignored "-Wpsabi"
-// GCC 12's _mm512_rcp14_ps passes _mm512_undefined_ps() as the (fully masked-off) fallback.
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 #include "svm/fastron_loops.hpp"
+#include "svm/simd_loops.hpp"
 
 #include <immintrin.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace svmp::svm::fastron_loops {
 namespace {
@@ -46,116 +46,100 @@ SVMP_INLINE void columnImpl(const PointsSoA& p, const float* z, float hg, float*
   }
 }
 
-SVMP_INLINE double sumImpl(const PointsSoA& p, const float* w, const float* z, float hg) {
-  alignas(32) float t[kChunk];
-  double total = 0;
-  for (int j0 = 0; j0 < p.n; j0 += kChunk) {
-    const int c = std::min(kChunk, p.n - j0);
-    const float* wc = w + j0;
-    float acc = 0.f;
-    for (int k0 = 0; k0 < p.dim; k0 += p.block) {
-      blockDenominator(p, k0, j0, c, z, hg, t);
-#pragma omp simd reduction(+ : acc)
-      for (int jj = 0; jj < c; ++jj) acc += wc[jj] / (t[jj] * t[jj]);
-    }
-    total += acc;
-  }
-  return total;
-}
-
 #define SVMP_AVX2 __attribute__((target("avx2,fma")))
 #define SVMP_AVX512 __attribute__((target("avx512f,fma")))
 SVMP_AVX2 void columnAvx2(const PointsSoA& p, const float* z, float hg, float* out) { columnImpl(p, z, hg, out); }
 
-// The query's hot loop, fused so that every partial sum stays in registers: per lane one support
-// point, per block 1 / t^2 from a reciprocal estimate refined by one Newton step (r (2 - t^2 r), about
-// 23 correct bits from AVX2's 12, more from AVX-512's 14), then one multiply-add with the weight.
-// Needs the point count padded with zero weights to a multiple of the vector width (the model pads to
-// 16).
-#define SVMP_FUSED_SUM(Vec, Ops, kLanes) \
- \
-  constexpr int kMaxDim = 48; \
-  Vec zb[kMaxDim]; \
-  for (int k = 0; k < kMaxDim; ++k) zb[k] = Ops::set1(k < p.dim ? z[k] : 0.f); \
-  const Vec one = Ops::set1(1.f), two = Ops::set1(2.f), vhg = Ops::set1(hg); \
-  Vec acc = Ops::set1(0.f); \
-  const int blocks = p.dim / p.block; \
-  for (int j = 0; j < p.n; j += kLanes) { \
-    Vec k = Ops::set1(0.f); \
-    for (int b = 0; b < blocks; ++b) { \
-      Vec s = Ops::set1(0.f); \
-      for (int c = b * p.block; c < (b + 1) * p.block; ++c) { \
-        const Vec d = Ops::sub(Ops::load(p.xs + c * p.stride + j), zb[c]); \
-        s = Ops::fmadd(d, d, s); \
+// The query's hot loop, fused so that every partial sum stays in registers, and rounded alike on
+// every instruction set: 16 lanes (one AVX-512 vector, two AVX2 ones or 16 scalars), lane l summing
+// the points j = l (mod 16) in order; per point and block t = fma(hg, s, 1) with s the fused sum of
+// squared differences in coordinate order, 1 / t^2 by an exact division (a reciprocal estimate's bits
+// differ by instruction set), one fused multiply-add with the weight; the lanes then added in order
+// in double. Needs the point count padded with zero weights to a multiple of 16 (the model pads so).
+// A macro, not a template: the Ops' intrinsics inline only into functions of their own target.
+#define SVMP_FUSED_SUM(Ops) \
+  using Vec = Ops::Vec; \
+  constexpr int kVecs = 16 / Ops::kLanes; \
+  const Vec zero = Ops::set1(0.f), one = Ops::set1(1.f), vhg = Ops::set1(hg); \
+  Vec acc[kVecs]; \
+  for (Vec& a : acc) a = zero; \
+  for (int j0 = 0; j0 < p.n; j0 += 16) \
+    for (int v = 0; v < kVecs; ++v) { \
+      const int j = j0 + v * Ops::kLanes; \
+      Vec k = zero; \
+      for (int b = 0; b < p.dim; b += p.block) { \
+        Vec s = zero; \
+        for (int c = b; c < b + p.block; ++c) { \
+          const Vec d = Ops::sub(Ops::load(p.xs + c * p.stride + j), Ops::set1(z[c])); \
+          s = Ops::fmadd(d, d, s); \
+        } \
+        const Vec t = Ops::fmadd(vhg, s, one); \
+        k = Ops::add(k, Ops::div(one, Ops::mul(t, t))); \
       } \
-      const Vec t = Ops::fmadd(vhg, s, one); \
-      const Vec t2 = Ops::mul(t, t); \
-      Vec r = Ops::rcp(t2); \
-      r = Ops::mul(r, Ops::fnmadd(t2, r, two)); \
-      k = Ops::add(k, r); \
+      acc[v] = Ops::fmadd(Ops::load(w + j), k, acc[v]); \
     } \
-    acc = Ops::fmadd(Ops::load(w + j), k, acc); \
-  } \
-  return Ops::sum(acc);
+  alignas(64) float lanes[16]; \
+  for (int v = 0; v < kVecs; ++v) Ops::store(lanes + v * Ops::kLanes, acc[v]); \
+  double total = 0; \
+  for (float x : lanes) total += x; \
+  return total;
+
+struct ScalarOps {
+  using Vec = float;
+  static constexpr int kLanes = 1;
+  static SVMP_INLINE float set1(float x) { return x; }
+  static SVMP_INLINE float load(const float* p) { return *p; }
+  static SVMP_INLINE void store(float* p, float a) { *p = a; }
+  static SVMP_INLINE float add(float a, float b) { return a + b; }
+  static SVMP_INLINE float sub(float a, float b) { return a - b; }
+  static SVMP_INLINE float mul(float a, float b) { return a * b; }
+  static SVMP_INLINE float div(float a, float b) { return a / b; }
+  static SVMP_INLINE float fmadd(float a, float b, float c) { return std::fma(a, b, c); }
+};
 
 struct Avx2Ops {
+  using Vec = __m256;
+  static constexpr int kLanes = 8;
   SVMP_AVX2 static SVMP_INLINE __m256 set1(float x) { return _mm256_set1_ps(x); }
   SVMP_AVX2 static SVMP_INLINE __m256 load(const float* p) { return _mm256_loadu_ps(p); }
+  SVMP_AVX2 static SVMP_INLINE void store(float* p, __m256 a) { _mm256_storeu_ps(p, a); }
   SVMP_AVX2 static SVMP_INLINE __m256 add(__m256 a, __m256 b) { return _mm256_add_ps(a, b); }
   SVMP_AVX2 static SVMP_INLINE __m256 sub(__m256 a, __m256 b) { return _mm256_sub_ps(a, b); }
   SVMP_AVX2 static SVMP_INLINE __m256 mul(__m256 a, __m256 b) { return _mm256_mul_ps(a, b); }
+  SVMP_AVX2 static SVMP_INLINE __m256 div(__m256 a, __m256 b) { return _mm256_div_ps(a, b); }
   SVMP_AVX2 static SVMP_INLINE __m256 fmadd(__m256 a, __m256 b, __m256 c) { return _mm256_fmadd_ps(a, b, c); }
-  SVMP_AVX2 static SVMP_INLINE __m256 fnmadd(__m256 a, __m256 b, __m256 c) { return _mm256_fnmadd_ps(a, b, c); }
-  SVMP_AVX2 static SVMP_INLINE __m256 rcp(__m256 a) { return _mm256_rcp_ps(a); }
-  SVMP_AVX2 static SVMP_INLINE double sum(__m256 a) {
-    alignas(32) float v[8];
-    _mm256_store_ps(v, a);
-    double s = 0;
-    for (float x : v) s += x;
-    return s;
-  }
 };
 
 struct Avx512Ops {
+  using Vec = __m512;
+  static constexpr int kLanes = 16;
   SVMP_AVX512 static SVMP_INLINE __m512 set1(float x) { return _mm512_set1_ps(x); }
   SVMP_AVX512 static SVMP_INLINE __m512 load(const float* p) { return _mm512_loadu_ps(p); }
+  SVMP_AVX512 static SVMP_INLINE void store(float* p, __m512 a) { _mm512_storeu_ps(p, a); }
   SVMP_AVX512 static SVMP_INLINE __m512 add(__m512 a, __m512 b) { return _mm512_add_ps(a, b); }
   SVMP_AVX512 static SVMP_INLINE __m512 sub(__m512 a, __m512 b) { return _mm512_sub_ps(a, b); }
   SVMP_AVX512 static SVMP_INLINE __m512 mul(__m512 a, __m512 b) { return _mm512_mul_ps(a, b); }
+  SVMP_AVX512 static SVMP_INLINE __m512 div(__m512 a, __m512 b) { return _mm512_div_ps(a, b); }
   SVMP_AVX512 static SVMP_INLINE __m512 fmadd(__m512 a, __m512 b, __m512 c) { return _mm512_fmadd_ps(a, b, c); }
-  SVMP_AVX512 static SVMP_INLINE __m512 fnmadd(__m512 a, __m512 b, __m512 c) { return _mm512_fnmadd_ps(a, b, c); }
-  SVMP_AVX512 static SVMP_INLINE __m512 rcp(__m512 a) { return _mm512_rcp14_ps(a); }
-  SVMP_AVX512 static SVMP_INLINE double sum(__m512 a) {
-    alignas(64) float v[16];
-    _mm512_store_ps(v, a);
-    double s = 0;
-    for (float x : v) s += x;
-    return s;
-  }
 };
 
-SVMP_AVX2 double sumAvx2(const PointsSoA& p, const float* w, const float* z, float hg) {
-  SVMP_FUSED_SUM(__m256, Avx2Ops, 8)
-}
+double sumScalar(const PointsSoA& p, const float* w, const float* z, float hg) { SVMP_FUSED_SUM(ScalarOps) }
+SVMP_AVX2 double sumAvx2(const PointsSoA& p, const float* w, const float* z, float hg) { SVMP_FUSED_SUM(Avx2Ops) }
 SVMP_AVX512 double sumAvx512(const PointsSoA& p, const float* w, const float* z, float hg) {
-  SVMP_FUSED_SUM(__m512, Avx512Ops, 16)
+  SVMP_FUSED_SUM(Avx512Ops)
 }
-
-const bool kHaveAvx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-const bool kHaveAvx512 = kHaveAvx2 && __builtin_cpu_supports("avx512f");
 
 }  // namespace
 
-bool usingAvx2() { return kHaveAvx2; }
-
+// The instruction sets svm/simd_loops.cpp dispatches to (SVMP_SIMD caps them there too).
 void kernelColumn(const PointsSoA& p, const float* z, float half_gamma, float* out) {
-  kHaveAvx2 ? columnAvx2(p, z, half_gamma, out) : columnImpl(p, z, half_gamma, out);
+  loops::usingAvx2() ? columnAvx2(p, z, half_gamma, out) : columnImpl(p, z, half_gamma, out);
 }
 
 double weightedSum(const PointsSoA& p, const float* weight, const float* z, float half_gamma) {
-  if (p.dim <= 48 && kHaveAvx512) return sumAvx512(p, weight, z, half_gamma);
-  if (p.dim <= 48 && kHaveAvx2) return sumAvx2(p, weight, z, half_gamma);
-  return sumImpl(p, weight, z, half_gamma);
+  if (loops::usingAvx512()) return sumAvx512(p, weight, z, half_gamma);
+  if (loops::usingAvx2()) return sumAvx2(p, weight, z, half_gamma);
+  return sumScalar(p, weight, z, half_gamma);
 }
 
 }  // namespace svmp::svm::fastron_loops

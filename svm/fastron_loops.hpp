@@ -3,7 +3,8 @@
 // block = dim) or to consecutive blocks of them and summed (the FK kernel: one block of 3 per control
 // point, eq. 4). Points are stored as a structure of arrays in float (row k of coordinate k at
 // xs + k * stride), so a query is one pass of 16-lane (AVX-512) or 8-lane (AVX2+FMA) arithmetic over
-// the support set, dispatched at run time, with a scalar baseline.
+// the support set, dispatched at run time as svm/simd_loops.cpp is (SVMP_SIMD), with a scalar
+// baseline. Both functions give the same bits on every instruction set (fastron_loops.cpp says how).
 // weightedSum needs `n` padded with zero weights and zero coordinates to a multiple of 16.
 // Thread safety: pure functions; scratch lives on the stack.
 #pragma once
@@ -22,6 +23,5 @@ struct PointsSoA {
 void kernelColumn(const PointsSoA& points, const float* z, float half_gamma, float* out);
 // sum_j weight[j] k(x_j, z): the model's value at one query.
 double weightedSum(const PointsSoA& points, const float* weight, const float* z, float half_gamma);
-bool usingAvx2();
 
 }  // namespace svmp::svm::fastron_loops

@@ -14,6 +14,7 @@
 
 #include "svm/box_loops.hpp"
 #include "svm/fast_exp.hpp"
+#include "svm/fastron_loops.hpp"
 #include "svm/simd_loops.hpp"
 
 namespace svmp::svm::loops {
@@ -210,6 +211,52 @@ TEST(SimdLoops, TruncatedRbfSumAddsTheTermsInEightLanesBitForBit) {
         ASSERT_EQ(grad[k], 2.0 * gamma * (gk - q[k] * sum)) << "d " << d << " coordinate " << k;
       }
       EXPECT_EQ(truncatedRbfSum(sv, q.data(), gamma, r2, nullptr), f);
+    }
+  }
+}
+
+// The Fastron's loops (svm/fastron_loops.cpp), the same way: a kernel column's entries rounded one
+// operation at a time; the model's value summed into 16 lanes (point j into lane j mod 16), squares
+// and weights fused, 1 / t^2 exactly divided, the lanes added in order; on one block and on blocks of
+// 3 (the FK kernel), with more coordinates than the vector loops keep in registers too.
+TEST(SimdLoops, FastronColumnAndSumAreTheReferencesBitForBit) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<float> u(-1, 1);
+  for (const auto& [dim, block] : {std::pair{3, 3}, {7, 7}, {15, 3}, {60, 3}}) {
+    for (int n = 0; n <= 70; n += 7) {
+      const long stride = (n + 15) / 16 * 16;
+      std::vector<float> xs(static_cast<size_t>(dim) * stride, 0.f), w(stride, 0.f), z(dim), column(n);
+      for (int j = 0; j < n; ++j) {
+        w[j] = u(rng);
+        for (int k = 0; k < dim; ++k) xs[k * stride + j] = u(rng);
+      }
+      for (float& c : z) c = u(rng);
+      const float hg = 1.7f;
+      const fastron_loops::PointsSoA points{xs.data(), stride, dim, block, n};
+      fastron_loops::kernelColumn(points, z.data(), hg, column.data());
+      float lanes[16] = {};
+      for (int j = 0; j < stride; ++j) {
+        float entry = 0.f, k = 0.f;
+        for (int b = 0; b < dim; b += block) {
+          float plain = 0.f, fused = 0.f;
+          for (int c = b; c < b + block; ++c) {
+            const float d = xs[c * stride + j] - z[c];
+            plain += d * d;
+            fused = std::fma(d, d, fused);
+          }
+          plain = 1.f + hg * plain;
+          fused = std::fma(hg, fused, 1.f);
+          entry += 1.f / (plain * plain);
+          k += 1.f / (fused * fused);
+        }
+        if (j < n) {
+          ASSERT_EQ(column[j], entry) << "dim " << dim << " point " << j;
+        }
+        lanes[j % 16] = std::fma(w[j], k, lanes[j % 16]);
+      }
+      double sum = 0.0;
+      for (float lane : lanes) sum += lane;
+      ASSERT_EQ(fastron_loops::weightedSum(points, w.data(), z.data(), hg), sum) << "dim " << dim << " n " << n;
     }
   }
 }
