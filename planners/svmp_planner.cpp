@@ -56,9 +56,10 @@ std::string SvmpOptions::validate() const {
   if (!(C > 0) || !std::isfinite(C)) return "C must be positive, got " + std::to_string(C);
   if (!positiveOrDerived(step)) return "step must be positive, got " + std::to_string(step);
   if ((samples_per_tree < 1 && samples_per_tree != kDerived) || k < 1 || descent_iterations < 1 ||
-      repair_samples < 2 || repair_rounds < 0 || lazy_trees < 0 || tree_expansions_per_node < 0)
+      repair_samples < 2 || repair_rounds < 0 || lazy_trees < 0 || tree_expansions_per_node < 0 ||
+      trees_before_build < 0)
     return "counts must be positive (samples_per_tree, k, descent_iterations >= 1, repair_samples >= 2, "
-           "repair_rounds, lazy_trees and tree_expansions_per_node >= 0)";
+           "repair_rounds, lazy_trees, tree_expansions_per_node and trees_before_build >= 0)";
   if (!positiveOrDerived(tree_range)) return "tree_range must be positive, got " + std::to_string(tree_range);
   if (!(eps > 0) || !(cache_mb > 0)) return "eps and cache_mb must be positive";
   if (kernel != "rbf" && kernel != "fk") return "kernel must be rbf or fk, got " + kernel;
