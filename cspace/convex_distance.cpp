@@ -67,18 +67,33 @@ robots::Shape core(const robots::Shape& s, double& radius) {
   return c;
 }
 
-// A sphere against a box in closed form: the plane normal to the centre's offset from its nearest
-// point of the box gives the exact distance. Empty unless the pair is a sphere and a box.
-std::optional<double> sphereBoxSeparation(const robots::Shape& a, const Eigen::Isometry3d& pa,
-                                          const robots::Shape& b, const Eigen::Isometry3d& pb) {
-  const bool a_sphere = a.kind == robots::ShapeKind::kSphere && b.kind == robots::ShapeKind::kBox;
-  if (!a_sphere && !(b.kind == robots::ShapeKind::kSphere && a.kind == robots::ShapeKind::kBox)) return {};
-  const Eigen::Isometry3d& box_pose = a_sphere ? pb : pa;
-  const Eigen::Vector3d centre = box_pose.inverse() * (a_sphere ? pa : pb).translation();
-  const Eigen::Vector3d half = 0.5 * (a_sphere ? b : a).dims;
-  const Eigen::Vector3d offset = centre - centre.cwiseMax(-half).cwiseMin(half);
-  if (!(offset.squaredNorm() > 0)) return 0.0;  // the centre inside the box: they overlap
-  const Eigen::Vector3d v = box_pose.linear() * offset;  // from the box towards the sphere
+// A sphere against a box or a cylinder in closed form: the plane normal to the centre's offset from
+// its nearest point of the other shape gives the exact distance. GJK only converges on a cylinder's
+// round side, and on a long one (a pole 10,000 long and 0.05 wide) stopped undecided where FCL then
+// reported a point 3e-5 away as touching. Empty unless the pair is a sphere and a box or cylinder.
+std::optional<double> sphereSeparation(const robots::Shape& a, const Eigen::Isometry3d& pa,
+                                       const robots::Shape& b, const Eigen::Isometry3d& pb) {
+  const auto other = [](const robots::Shape& s) {
+    return s.kind == robots::ShapeKind::kBox || s.kind == robots::ShapeKind::kCylinder;
+  };
+  const bool a_sphere = a.kind == robots::ShapeKind::kSphere && other(b);
+  if (!a_sphere && !(b.kind == robots::ShapeKind::kSphere && other(a))) return {};
+  const robots::Shape& solid = a_sphere ? b : a;
+  const Eigen::Isometry3d& solid_pose = a_sphere ? pb : pa;
+  const Eigen::Vector3d centre = solid_pose.inverse() * (a_sphere ? pa : pb).translation();
+  Eigen::Vector3d nearest;
+  if (solid.kind == robots::ShapeKind::kBox) {
+    const Eigen::Vector3d half = 0.5 * solid.dims;
+    nearest = centre.cwiseMax(-half).cwiseMin(half);
+  } else {
+    const double radial = centre.head<2>().norm(), half_length = 0.5 * solid.dims.y();
+    nearest.head<2>() = radial > solid.dims.x() ? (solid.dims.x() / radial) * centre.head<2>()
+                                                : Eigen::Vector2d(centre.head<2>());
+    nearest.z() = std::clamp(centre.z(), -half_length, half_length);
+  }
+  const Eigen::Vector3d offset = centre - nearest;
+  if (!(offset.squaredNorm() > 0)) return 0.0;  // the centre inside: they overlap
+  const Eigen::Vector3d v = solid_pose.linear() * offset;  // from the solid towards the sphere
   return separationAlong(a, pa, b, pb, a_sphere ? v : Eigen::Vector3d(-v));
 }
 
@@ -114,7 +129,7 @@ bool boxesOverlap(const robots::Shape& a, const Eigen::Isometry3d& pa, const rob
 double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d& pa,
                           const robots::Shape& b_shape, const Eigen::Isometry3d& pb,
                           const Eigen::Vector3d& hint, double rel_gap, double enough) {
-  if (const auto exact = sphereBoxSeparation(a_shape, pa, b_shape, pb)) return *exact;
+  if (const auto exact = sphereSeparation(a_shape, pa, b_shape, pb)) return *exact;
   double margin = 0;
   const robots::Shape a = core(a_shape, margin), b = core(b_shape, margin);
   Eigen::Vector3d v = hint;
@@ -141,7 +156,7 @@ double distanceLowerBound(const robots::Shape& a_shape, const Eigen::Isometry3d&
 
 std::optional<bool> intersects(const robots::Shape& a_shape, const Eigen::Isometry3d& pa,
                                const robots::Shape& b_shape, const Eigen::Isometry3d& pb) {
-  if (const auto exact = sphereBoxSeparation(a_shape, pa, b_shape, pb)) return *exact <= 0;
+  if (const auto exact = sphereSeparation(a_shape, pa, b_shape, pb)) return *exact <= 0;
   if (a_shape.kind == robots::ShapeKind::kBox && b_shape.kind == robots::ShapeKind::kBox)
     return boxesOverlap(a_shape, pa, b_shape, pb);
   double margin = 0;

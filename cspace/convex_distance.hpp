@@ -7,8 +7,8 @@
 // (a separating plane); this module evaluates it along the directions of a GJK run of its own
 // (Gilbert, Johnson, Keerthi 1988, with van den Bergen's lower-bound stop) on the shapes' cores: a
 // capsule is its segment and a sphere its centre, grown by their radii, so against a box the run is
-// on a polytope and ends exactly (on round shapes GJK only converges). A sphere against a box is in
-// closed form. A bug there can only loosen the bound: every value returned is such a plane's
+// on a polytope and ends exactly (on round shapes GJK only converges). A sphere against a box or a
+// cylinder is in closed form. A bug there can only loosen the bound: every value returned is such a plane's
 // separation, never a distance taken on trust. Positive means the shapes are disjoint (one inside
 // the other included). GJK's simplex step: cspace/gjk_simplex.hpp.
 //
@@ -41,8 +41,8 @@ double distanceLowerBound(const robots::Shape& a, const Eigen::Isometry3d& pa,
 
 // Whether the placed shapes intersect (touching included), when a GJK run on their cores decides it:
 // a plane separating the cores by more than the radii proves them apart, a point of the cores'
-// difference within the radii of the origin proves them touching (a sphere against a box in closed
-// form, two boxes by the separating-axis test). Empty when the run stalls undecided (round shapes
+// difference within the radii of the origin proves them touching (a sphere against a box or a
+// cylinder in closed form, two boxes by the separating-axis test). Empty when the run stalls undecided (round shapes
 // grazing each other): ask FCL then. The collision checker's narrow phase
 // (cspace/collision_checker.cpp).
 std::optional<bool> intersects(const robots::Shape& a, const Eigen::Isometry3d& pa, const robots::Shape& b,

@@ -212,5 +212,39 @@ TEST(ConvexDistanceTest, ExactForSpheresAndForAPointAgainstABox) {
       0);
 }
 
+// A sphere against a cylinder in closed form, on a turned pole 10,000 long and 0.05 wide, where GJK
+// had stalled and FCL reported a point 3e-5 from its side as touching: beside its side, off its rim
+// and over its cap, in either order; inside it, touching.
+TEST(ConvexDistanceTest, ExactForASphereAgainstALongCylinder) {
+  const Shape pole = Shape::cylinder(0.05, 10000), ball = Shape::sphere(1e-6);
+  Eigen::Isometry3d pole_pose = Eigen::Isometry3d::Identity();
+  pole_pose.linear() = (Eigen::AngleAxisd(-1.4787, Eigen::Vector3d::UnitX()) *
+                        Eigen::AngleAxisd(0.0822, Eigen::Vector3d::UnitY()) *
+                        Eigen::AngleAxisd(0.0813, Eigen::Vector3d::UnitZ())).toRotationMatrix();
+  pole_pose.translation() = Eigen::Vector3d(0.3, -0.2, 0.1);
+  struct Case {
+    Eigen::Vector3d local;  // the ball's centre in the pole's frame
+    double distance;
+  };
+  const double r = 1e-6;
+  for (const Case& c : {Case{{0.05 + 3e-5 + r, 0, 1234.5}, 3e-5},
+                        Case{{0, -(0.05 + 0.01), -4321}, 0.01 - r},
+                        Case{{0.05 + 0.3, 0, 5000 + 0.4}, 0.5 - r},
+                        Case{{0.01, 0.02, -5000 - 0.2}, 0.2 - r}}) {
+    Eigen::Isometry3d at = Eigen::Isometry3d::Identity();
+    at.translation() = pole_pose * c.local;
+    for (bool swap : {false, true}) {
+      const double d = swap ? distanceLowerBound(ball, at, pole, pole_pose, Eigen::Vector3d::UnitX())
+                            : distanceLowerBound(pole, pole_pose, ball, at, Eigen::Vector3d::UnitX());
+      EXPECT_NEAR(d, c.distance, 1e-9) << c.local.transpose();
+      EXPECT_EQ(intersects(pole, pole_pose, ball, at), std::optional<bool>(false));
+    }
+  }
+  Eigen::Isometry3d inside = Eigen::Isometry3d::Identity();
+  inside.translation() = pole_pose * Eigen::Vector3d(0.05 - 1e-5, 0, 4999);
+  EXPECT_EQ(intersects(ball, inside, pole, pole_pose), std::optional<bool>(true));
+  EXPECT_LE(distanceLowerBound(ball, inside, pole, pole_pose, Eigen::Vector3d::UnitX()), 0.0);
+}
+
 }  // namespace
 }  // namespace svmp::cspace
