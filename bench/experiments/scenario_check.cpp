@@ -1,5 +1,6 @@
 #include "bench/experiments/scenario_check.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <limits>
 
@@ -9,10 +10,16 @@
 namespace svmp::experiments {
 namespace {
 
+// Four significant digits, or as many as show the fourth decimal of a large value (a problem placed
+// at 1e6 printed every coordinate as 1e+06).
 std::string format(const Eigen::VectorXd& q) {
   std::ostringstream s;
-  s << std::setprecision(4) << "[";
-  for (int i = 0; i < q.size(); ++i) s << (i ? ", " : "") << q[i];
+  s << "[";
+  for (int i = 0; i < q.size(); ++i) {
+    const double magnitude = std::abs(q[i]);
+    const int digits = magnitude >= 1e3 && std::isfinite(magnitude) ? 5 + static_cast<int>(std::log10(magnitude)) : 4;
+    s << (i ? ", " : "") << std::setprecision(std::min(digits, 17)) << q[i];
+  }
   return s.str() + "]";
 }
 
