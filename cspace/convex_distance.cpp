@@ -69,7 +69,7 @@ robots::Shape core(const robots::Shape& s, double& radius) {
 
 // A sphere against a box or a cylinder in closed form: the plane normal to the centre's offset from
 // its nearest point of the other shape gives the exact distance. GJK only converges on a cylinder's
-// round side, and on a long one (a pole 10,000 long and 0.05 wide) stopped undecided where FCL then
+// round side, and on a long one (a pole 10,000 long, 0.05 in radius) stopped undecided where FCL then
 // reported a point 3e-5 away as touching. Empty unless the pair is a sphere and a box or cylinder.
 std::optional<double> sphereSeparation(const robots::Shape& a, const Eigen::Isometry3d& pa,
                                        const robots::Shape& b, const Eigen::Isometry3d& pb) {

@@ -149,7 +149,9 @@ PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Term
     if (straight_motion_blocked_ && stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached while checking the straight start-goal motion";
-    } else if (!result.solved() && !(straight_motion_blocked_ && answerBeforeBuild(q, seed, stop, result))) {
+    } else if (!result.solved() && straight_motion_blocked_ && answerBeforeBuild(q, seed, stop, result)) {
+      certify(result, seed, stop);  // proven already when solved; a no-op then
+    } else if (!result.solved()) {
       buildRoadmap(seed, stop, result);
       built_ = result.solved();
       if (built_) {

@@ -72,7 +72,7 @@ class Planner {
   virtual void clear() = 0;
   // clear(), build() and query() in one: counters, times and status cover all of it. A roadmap
   // planner (triesStraightMotionFirst) whose query's straight motion is free and proven returns it
-  // without a build: the path its query would have returned first.
+  // without a build: the path its query would have returned first; then answerBeforeBuild may answer.
   PlanResult solve(const cspace::Query& query, std::uint64_t seed, const Termination& stop = {});
 
   virtual PlannerView view() const { return {}; }
@@ -97,7 +97,7 @@ class Planner {
   // True for the roadmap planners, whose query begins with the straight motion (queryRoadmap).
   virtual bool triesStraightMotionFirst() const { return false; }
   // Called by solve() after a blocked straight motion, before the build: true when `result` is final
-  // without one (solved and certified, or the time limit reached).
+  // without one (solved, its path proven with a certifier, or the time limit reached).
   virtual bool answerBeforeBuild(const cspace::Query&, std::uint64_t, const Termination&, PlanResult&) {
     return false;
   }

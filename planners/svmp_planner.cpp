@@ -127,6 +127,14 @@ std::vector<std::vector<int>> smallObstacleNeighbourhoods(const Eigen::MatrixXd&
   return svm::classNeighbourhoods(scaled, labels, ids, svm::Kernel::rbfFromSigma(sigma),
                                   0.5 / static_cast<double>(ids.size()));
 }
+// The roadmap's configurations along `nodes`, a path provenPath has checked (and proven, with a
+// certifier), as the solved result.
+void takePath(const Roadmap& roadmap, const std::vector<int>& nodes, const PlanningContext& context,
+              PlanResult& result) {
+  for (int v : nodes) result.path.push_back(roadmap.node(v));
+  result.certified = context.certifier != nullptr;
+  result.status = PlanStatus::kSolved;
+}
 }  // namespace
 
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
@@ -337,10 +345,8 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
     const std::vector<int> nodes = provenPath(with_query, start_node, goal_node, context_, &roadmap_,
                                               checks, result.times.certify_ms);
     if (nodes.empty()) continue;
-    for (int v : nodes) result.path.push_back(with_query.node(v));
+    takePath(with_query, nodes, context_, result);
     keepTreeNodes(with_query, first);
-    result.certified = context_.certifier != nullptr;
-    result.status = PlanStatus::kSolved;
     ++tree_answers_;
     return true;
   }
@@ -350,6 +356,7 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
 bool SvmpPlanner::answerBeforeBuild(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
                                     PlanResult& result) {
   if (options_.trees_before_build <= 0) return false;
+  const auto t0 = Clock::now();
   Roadmap trees;
   trees.addNode(query.start);
   trees.addNode(query.goal);
@@ -357,21 +364,23 @@ bool SvmpPlanner::answerBeforeBuild(const cspace::Query& query, std::uint64_t se
   TreeStep step(options_.tree_range);
   const TreeConnectResult grown = connectByTrees(trees, {0}, {1}, context_, options_.tree_range,
                                                  options_.trees_before_build, rng, stop, &step);
-  if (!grown.connected && stop()) {
-    result.status = PlanStatus::kTimeout;
-    result.message = "time limit reached while growing trees before the build";
+  std::vector<int> nodes;
+  if (grown.connected) {
+    int checks = 0;
+    nodes = provenPath(trees, 0, 1, context_, nullptr, checks, result.times.certify_ms);
+  }
+  result.times.query_ms += msSince(t0);
+  // The trees' nodes and edges, as the rivals' trees are counted; a build that follows counts its own.
+  result.milestones = trees.numNodes();
+  result.roadmap_edges = trees.numEdges();
+  if (!nodes.empty()) {
+    takePath(trees, nodes, context_, result);
+    result.message.clear();
     return true;
   }
-  if (!grown.connected) return false;
-  int checks = 0;
-  const std::vector<int> nodes = provenPath(trees, 0, 1, context_, nullptr, checks, result.times.certify_ms);
-  if (nodes.empty()) return false;
-  for (int v : nodes) result.path.push_back(trees.node(v));
-  result.certified = context_.certifier != nullptr;
-  result.status = PlanStatus::kSolved;
-  result.message.clear();
-  result.milestones = trees.numNodes();  // the trees' nodes, as the rivals' trees are counted
-  result.roadmap_edges = trees.numEdges();
+  if (!stop()) return false;
+  result.status = PlanStatus::kTimeout;
+  result.message = "time limit reached while growing trees before the build";
   return true;
 }
 

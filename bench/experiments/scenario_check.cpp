@@ -1,5 +1,6 @@
 #include "bench/experiments/scenario_check.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>

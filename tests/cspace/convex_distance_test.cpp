@@ -212,7 +212,7 @@ TEST(ConvexDistanceTest, ExactForSpheresAndForAPointAgainstABox) {
       0);
 }
 
-// A sphere against a cylinder in closed form, on a turned pole 10,000 long and 0.05 wide, where GJK
+// A sphere against a cylinder in closed form, on a turned pole 10,000 long and 0.05 in radius, where GJK
 // had stalled and FCL reported a point 3e-5 from its side as touching: beside its side, off its rim
 // and over its cap, in either order; inside it, touching.
 TEST(ConvexDistanceTest, ExactForASphereAgainstALongCylinder) {
@@ -237,7 +237,8 @@ TEST(ConvexDistanceTest, ExactForASphereAgainstALongCylinder) {
       const double d = swap ? distanceLowerBound(ball, at, pole, pole_pose, Eigen::Vector3d::UnitX())
                             : distanceLowerBound(pole, pole_pose, ball, at, Eigen::Vector3d::UnitX());
       EXPECT_NEAR(d, c.distance, 1e-9) << c.local.transpose();
-      EXPECT_EQ(intersects(pole, pole_pose, ball, at), std::optional<bool>(false));
+      EXPECT_EQ(swap ? intersects(ball, at, pole, pole_pose) : intersects(pole, pole_pose, ball, at),
+                std::optional<bool>(false));
     }
   }
   Eigen::Isometry3d inside = Eigen::Isometry3d::Identity();

@@ -338,6 +338,8 @@ TEST(Planners, SvmpTreesBeforeBuildAnswerWithoutLearning) {
   EXPECT_GT(r.path.size(), 2u);
   EXPECT_TRUE(pathIsValid(*w, r.path));
   EXPECT_EQ(r.support_vectors, 0u);
+  EXPECT_GE(r.milestones, r.path.size());  // the trees' nodes, the path's among them
+  EXPECT_GE(r.roadmap_edges + 1, r.milestones - 1);  // two trees of k nodes hold k - 2 edges, then the join
   EXPECT_FALSE(planner->built());
   auto build_first = makeWorld(around_the_block(0));
   const PlanResult learned = build_first->planner("svmp")->solve(build_first->query(), 1);
@@ -353,6 +355,21 @@ TEST(Planners, SvmpTreesBeforeBuildAnswerWithoutLearning) {
   EXPECT_GT(fallback.support_vectors, 0u);
   EXPECT_TRUE(through_gap->built());
   EXPECT_TRUE(pathIsValid(*gap, fallback.path));
+
+  // A time limit that ends the trees ends the run, saying so, with no build: a wall across the space.
+  auto endless = makeWorld(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n  - {name: wall, shape: box, size: [0.2, 1.2, 1], position: [0.5, 0.5, 0]}\n"
+      "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n"
+      "planners:\n  svmp: {trees_before_build: 1000000}\n");
+  auto stopped = endless->planner("svmp");
+  int polls = 0;
+  const PlanResult timeout = stopped->solve(endless->query(), 1, Termination::when([&] { return ++polls > 200; }));
+  EXPECT_EQ(timeout.status, PlanStatus::kTimeout);
+  EXPECT_NE(timeout.message.find("growing trees before the build"), std::string::npos) << timeout.message;
+  EXPECT_GT(timeout.milestones, 2u);
+  EXPECT_EQ(timeout.support_vectors, 0u);
+  EXPECT_FALSE(stopped->built());
 }
 
 TEST(InvalidQueries, SvmpStepsOutOfOrderThrow) {

@@ -218,7 +218,7 @@ TEST(SimdLoops, TruncatedRbfSumAddsTheTermsInEightLanesBitForBit) {
 // The Fastron's loops (svm/fastron_loops.cpp), the same way: a kernel column's entries rounded one
 // operation at a time; the model's value summed into 16 lanes (point j into lane j mod 16), squares
 // and weights fused, 1 / t^2 exactly divided, the lanes added in order; on one block and on blocks of
-// 3 (the FK kernel), with more coordinates than the vector loops keep in registers too.
+// 3 (the FK kernel), up to 60 coordinates (the loops once stopped at 48).
 TEST(SimdLoops, FastronColumnAndSumAreTheReferencesBitForBit) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<float> u(-1, 1);
