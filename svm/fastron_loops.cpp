@@ -7,7 +7,6 @@
 #include <immintrin.h>
 
 #include <algorithm>
-#include <cmath>
 
 namespace svmp::svm::fastron_loops {
 namespace {
@@ -51,13 +50,15 @@ SVMP_INLINE void columnImpl(const PointsSoA& p, const float* z, float hg, float*
 SVMP_AVX2 void columnAvx2(const PointsSoA& p, const float* z, float hg, float* out) { columnImpl(p, z, hg, out); }
 
 // The query's hot loop, fused so that every partial sum stays in registers, and rounded alike on
-// every instruction set: 16 lanes (one AVX-512 vector, two AVX2 ones or 16 scalars), lane l summing
-// the points j = l (mod 16) in order; per point and block t = fma(hg, s, 1) with s the fused sum of
-// squared differences in coordinate order, 1 / t^2 by an exact division (a reciprocal estimate's bits
-// differ by instruction set), one fused multiply-add with the weight; the lanes then added in order
-// in double. Needs the point count padded with zero weights to a multiple of 16 (the model pads so).
+// every instruction set: 16 lanes (one AVX-512 vector, two AVX2 or four SSE2 ones), lane l summing
+// the points j = l (mod 16) in order; per point and block t = 1 + hg s with s the sum of squared
+// differences in coordinate order, 1 / t^2 by an exact division (a reciprocal estimate's bits differ
+// by instruction set), the weight's product added; every operation rounded alone, as SSE2 has no
+// fused multiply-add (fusing cost SSE2 13x its speed through the C library's fmaf and gained
+// AVX-512 0-3%); the lanes then added in order in double. Needs the point count padded with zero
+// weights to a multiple of 16 (the model pads so).
 // A macro, not a template: the Ops' intrinsics inline only into functions of their own target.
-#define SVMP_FUSED_SUM(Ops) \
+#define SVMP_LANE_SUM(Ops) \
   using Vec = Ops::Vec; \
   constexpr int kVecs = 16 / Ops::kLanes; \
   const Vec zero = Ops::set1(0.f), one = Ops::set1(1.f), vhg = Ops::set1(hg); \
@@ -71,12 +72,12 @@ SVMP_AVX2 void columnAvx2(const PointsSoA& p, const float* z, float hg, float* o
         Vec s = zero; \
         for (int c = b; c < b + p.block; ++c) { \
           const Vec d = Ops::sub(Ops::load(p.xs + c * p.stride + j), Ops::set1(z[c])); \
-          s = Ops::fmadd(d, d, s); \
+          s = Ops::add(Ops::mul(d, d), s); \
         } \
-        const Vec t = Ops::fmadd(vhg, s, one); \
+        const Vec t = Ops::add(Ops::mul(vhg, s), one); \
         k = Ops::add(k, Ops::div(one, Ops::mul(t, t))); \
       } \
-      acc[v] = Ops::fmadd(Ops::load(w + j), k, acc[v]); \
+      acc[v] = Ops::add(Ops::mul(Ops::load(w + j), k), acc[v]); \
     } \
   alignas(64) float lanes[16]; \
   for (int v = 0; v < kVecs; ++v) Ops::store(lanes + v * Ops::kLanes, acc[v]); \
@@ -84,17 +85,16 @@ SVMP_AVX2 void columnAvx2(const PointsSoA& p, const float* z, float hg, float* o
   for (float x : lanes) total += x; \
   return total;
 
-struct ScalarOps {
-  using Vec = float;
-  static constexpr int kLanes = 1;
-  static SVMP_INLINE float set1(float x) { return x; }
-  static SVMP_INLINE float load(const float* p) { return *p; }
-  static SVMP_INLINE void store(float* p, float a) { *p = a; }
-  static SVMP_INLINE float add(float a, float b) { return a + b; }
-  static SVMP_INLINE float sub(float a, float b) { return a - b; }
-  static SVMP_INLINE float mul(float a, float b) { return a * b; }
-  static SVMP_INLINE float div(float a, float b) { return a / b; }
-  static SVMP_INLINE float fmadd(float a, float b, float c) { return std::fma(a, b, c); }
+struct Sse2Ops {
+  using Vec = __m128;
+  static constexpr int kLanes = 4;
+  static SVMP_INLINE __m128 set1(float x) { return _mm_set1_ps(x); }
+  static SVMP_INLINE __m128 load(const float* p) { return _mm_loadu_ps(p); }
+  static SVMP_INLINE void store(float* p, __m128 a) { _mm_storeu_ps(p, a); }
+  static SVMP_INLINE __m128 add(__m128 a, __m128 b) { return _mm_add_ps(a, b); }
+  static SVMP_INLINE __m128 sub(__m128 a, __m128 b) { return _mm_sub_ps(a, b); }
+  static SVMP_INLINE __m128 mul(__m128 a, __m128 b) { return _mm_mul_ps(a, b); }
+  static SVMP_INLINE __m128 div(__m128 a, __m128 b) { return _mm_div_ps(a, b); }
 };
 
 struct Avx2Ops {
@@ -107,7 +107,6 @@ struct Avx2Ops {
   SVMP_AVX2 static SVMP_INLINE __m256 sub(__m256 a, __m256 b) { return _mm256_sub_ps(a, b); }
   SVMP_AVX2 static SVMP_INLINE __m256 mul(__m256 a, __m256 b) { return _mm256_mul_ps(a, b); }
   SVMP_AVX2 static SVMP_INLINE __m256 div(__m256 a, __m256 b) { return _mm256_div_ps(a, b); }
-  SVMP_AVX2 static SVMP_INLINE __m256 fmadd(__m256 a, __m256 b, __m256 c) { return _mm256_fmadd_ps(a, b, c); }
 };
 
 struct Avx512Ops {
@@ -120,13 +119,12 @@ struct Avx512Ops {
   SVMP_AVX512 static SVMP_INLINE __m512 sub(__m512 a, __m512 b) { return _mm512_sub_ps(a, b); }
   SVMP_AVX512 static SVMP_INLINE __m512 mul(__m512 a, __m512 b) { return _mm512_mul_ps(a, b); }
   SVMP_AVX512 static SVMP_INLINE __m512 div(__m512 a, __m512 b) { return _mm512_div_ps(a, b); }
-  SVMP_AVX512 static SVMP_INLINE __m512 fmadd(__m512 a, __m512 b, __m512 c) { return _mm512_fmadd_ps(a, b, c); }
 };
 
-double sumScalar(const PointsSoA& p, const float* w, const float* z, float hg) { SVMP_FUSED_SUM(ScalarOps) }
-SVMP_AVX2 double sumAvx2(const PointsSoA& p, const float* w, const float* z, float hg) { SVMP_FUSED_SUM(Avx2Ops) }
+double sumSse2(const PointsSoA& p, const float* w, const float* z, float hg) { SVMP_LANE_SUM(Sse2Ops) }
+SVMP_AVX2 double sumAvx2(const PointsSoA& p, const float* w, const float* z, float hg) { SVMP_LANE_SUM(Avx2Ops) }
 SVMP_AVX512 double sumAvx512(const PointsSoA& p, const float* w, const float* z, float hg) {
-  SVMP_FUSED_SUM(Avx512Ops)
+  SVMP_LANE_SUM(Avx512Ops)
 }
 
 }  // namespace
@@ -139,7 +137,7 @@ void kernelColumn(const PointsSoA& p, const float* z, float half_gamma, float* o
 double weightedSum(const PointsSoA& p, const float* weight, const float* z, float half_gamma) {
   if (loops::usingAvx512()) return sumAvx512(p, weight, z, half_gamma);
   if (loops::usingAvx2()) return sumAvx2(p, weight, z, half_gamma);
-  return sumScalar(p, weight, z, half_gamma);
+  return sumSse2(p, weight, z, half_gamma);
 }
 
 }  // namespace svmp::svm::fastron_loops
