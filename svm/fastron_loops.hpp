@@ -2,9 +2,9 @@
 // quadratic kernel k(x, y) = (1 + (g/2)|x - y|^2)^-2, applied to whole feature vectors (Fastron RBF,
 // block = dim) or to consecutive blocks of them and summed (the FK kernel: one block of 3 per control
 // point, eq. 4). Points are stored as a structure of arrays in float (row k of coordinate k at
-// xs + k * stride), so a query is one pass of 16-lane (AVX-512) or 8-lane (AVX2+FMA) arithmetic over
-// the support set, dispatched at run time as svm/simd_loops.cpp is (SVMP_SIMD), with a scalar
-// baseline. Both functions give the same bits on every instruction set (fastron_loops.cpp says how).
+// xs + k * stride), so a query is one pass of 16-lane (AVX-512), 8-lane (AVX2) or 4-lane (SSE2)
+// arithmetic over the support set, dispatched at run time as svm/simd_loops.cpp is (SVMP_SIMD).
+// Both functions give the same bits on every instruction set (fastron_loops.cpp says how).
 // weightedSum needs `n` padded with zero weights and zero coordinates to a multiple of 16.
 // Thread safety: pure functions; scratch lives on the stack.
 #pragma once
