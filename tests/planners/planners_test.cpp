@@ -319,59 +319,6 @@ TEST(Planners, RoadmapPlannersAnswerAFreeStraightMotionWithoutABuild) {
   }
 }
 
-// svmp.trees_before_build: a single query whose straight motion is blocked grows trees first and,
-// where they join, answers with no obstacle sampled; where they do not (a gap narrower than their
-// steps, in one sample), the build answers as before.
-TEST(Planners, SvmpTreesBeforeBuildAnswerWithoutLearning) {
-  const auto around_the_block = [](int trees) {
-    return "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
-           "obstacles:\n  - {name: block, shape: box, size: [0.2, 0.2, 1], position: [0.5, 0.5, 0]}\n"
-           "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n"
-           "planners:\n  svmp: {trees_before_build: " + std::to_string(trees) + "}\n";
-  };
-  auto w = makeWorld(around_the_block(500));
-  w->certify();
-  auto planner = w->planner("svmp");
-  const PlanResult r = planner->solve(w->query(), 1);
-  ASSERT_TRUE(r.solved()) << r.message;
-  EXPECT_TRUE(r.certified);
-  EXPECT_GT(r.path.size(), 2u);
-  EXPECT_TRUE(pathIsValid(*w, r.path));
-  EXPECT_EQ(r.support_vectors, 0u);
-  EXPECT_GE(r.milestones, r.path.size());  // the trees' nodes, the path's among them
-  EXPECT_GE(r.roadmap_edges + 1, r.milestones - 1);  // two trees of k nodes hold k - 2 edges, then the join
-  EXPECT_FALSE(planner->built());
-  auto build_first = makeWorld(around_the_block(0));
-  const PlanResult learned = build_first->planner("svmp")->solve(build_first->query(), 1);
-  ASSERT_TRUE(learned.solved()) << learned.message;
-  EXPECT_GT(learned.support_vectors, 0u);
-
-  auto gap = makeWorld(gapScenario(
-      0.03, "  svmp: {sigma: 0.06, C: 100, step: 0.05, samples_per_tree: 200, k: 10, trees_before_build: 1}\n"));
-  gap->certify();
-  auto through_gap = gap->planner("svmp");
-  const PlanResult fallback = through_gap->solve(gap->query(), 4);
-  ASSERT_TRUE(fallback.solved()) << fallback.message;
-  EXPECT_GT(fallback.support_vectors, 0u);
-  EXPECT_TRUE(through_gap->built());
-  EXPECT_TRUE(pathIsValid(*gap, fallback.path));
-
-  // A time limit that ends the trees ends the run, saying so, with no build: a wall across the space.
-  auto endless = makeWorld(
-      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
-      "obstacles:\n  - {name: wall, shape: box, size: [0.2, 1.2, 1], position: [0.5, 0.5, 0]}\n"
-      "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n"
-      "planners:\n  svmp: {trees_before_build: 1000000}\n");
-  auto stopped = endless->planner("svmp");
-  int polls = 0;
-  const PlanResult timeout = stopped->solve(endless->query(), 1, Termination::when([&] { return ++polls > 200; }));
-  EXPECT_EQ(timeout.status, PlanStatus::kTimeout);
-  EXPECT_NE(timeout.message.find("growing trees before the build"), std::string::npos) << timeout.message;
-  EXPECT_GT(timeout.milestones, 2u);
-  EXPECT_EQ(timeout.support_vectors, 0u);
-  EXPECT_FALSE(stopped->built());
-}
-
 TEST(InvalidQueries, SvmpStepsOutOfOrderThrow) {
   auto w = makeWorld(gapScenario(0.03, kPlanners));
   SvmpPlanner svmp(w->context, SvmpOptions{});
