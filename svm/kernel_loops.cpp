@@ -208,10 +208,10 @@ SVMP_AVX512 SVMP_ENTRY double truncatedRbfSumAvx512(const BlockedSupportVectors&
               : truncatedRbfSumDispatch<8, false>(sv, q, gamma, r2, grad);
 }
 
-}  // namespace
-
-void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
-               float* out) {
+// The widest loop this machine runs, for either column type.
+template <typename Out>
+void rbfColumnDispatch(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
+                       Out* out) {
   if (usingAvx512())
     rbfColumnAvx512(coords, stride, d, z, neg_gamma, len, out);
   else if (usingAvx2())
@@ -220,14 +220,16 @@ void rbfColumn(const double* coords, long stride, int d, const double* z, double
     rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
 }
 
+}  // namespace
+
+void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
+               float* out) {
+  rbfColumnDispatch(coords, stride, d, z, neg_gamma, len, out);
+}
+
 void rbfColumn(const double* coords, long stride, int d, const double* z, double neg_gamma, int len,
                double* out) {
-  if (usingAvx512())
-    rbfColumnAvx512(coords, stride, d, z, neg_gamma, len, out);
-  else if (usingAvx2())
-    rbfColumnAvx2(coords, stride, d, z, neg_gamma, len, out);
-  else
-    rbfColumnImpl<2>(coords, stride, d, z, neg_gamma, len, out);
+  rbfColumnDispatch(coords, stride, d, z, neg_gamma, len, out);
 }
 
 double truncatedRbfSum(const BlockedSupportVectors& sv, const double* q, double gamma, double r2,
