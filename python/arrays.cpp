@@ -6,7 +6,24 @@ namespace svmp::python {
 
 std::string numberText(double v) { return py::repr(py::float_(v)); }
 
+double numberArgument(const py::handle& value, const std::string& name) {
+  const py::object real = py::module_::import("numbers").attr("Real");
+  if (py::isinstance<py::bool_>(value) || !py::isinstance(value, real))
+    throw py::value_error(name + " is " + py::repr(value).cast<std::string>() + ": expected a real number");
+  return value.cast<double>();
+}
+
+long long integerArgument(const py::int_& value, const std::string& name, long long lo, long long hi,
+                          const std::string& why) {
+  if (value < py::int_(lo) || value > py::int_(hi))
+    throw py::value_error(name + " is " + py::str(static_cast<const py::object&>(value)).cast<std::string>() + ": " + why);
+  return value.cast<long long>();
+}
+
 DoubleArray checkedArray(const py::handle& object, const std::string& name, int ndim, long cols) {
+  // forcecast would drop an imaginary part with only NumPy's warning.
+  if (const py::array raw = py::array::ensure(object); raw && raw.dtype().kind() == 'c')
+    throw py::value_error(name + ": expected real numbers, got an array of complex numbers");
   DoubleArray a = DoubleArray::ensure(object);
   if (!a) throw py::value_error(name + ": expected an array of numbers, got " + std::string(py::str(py::type::of(object))));
   const std::string shape = ndim == 2 ? "(n, " + (cols >= 0 ? std::to_string(cols) : std::string("d")) + ")"

@@ -21,6 +21,14 @@ std::string numberText(double v);
 // (ndim 2) or `cols` entries (ndim 1); every entry finite.
 DoubleArray checkedArray(const py::handle& object, const std::string& name, int ndim, long cols = -1);
 
+// A number argument (a Python or NumPy real number; not a string, complex or bool): a ValueError
+// naming the argument otherwise, not pybind11's TypeError that prints every argument.
+double numberArgument(const py::handle& value, const std::string& name);
+// An integer argument in [lo, hi], compared as a Python integer: 2**63 is a ValueError naming the
+// argument, not pybind11's TypeError about the signature.
+long long integerArgument(const py::int_& value, const std::string& name, long long lo, long long hi,
+                          const std::string& why);
+
 // An n x d array of samples as Eigen's d x n (one sample per column, the library's layout).
 Eigen::MatrixXd samplesFromArray(const py::handle& object, const std::string& name, long cols = -1);
 // A 1-D array of `size` entries (any size when < 0).

@@ -51,15 +51,6 @@ std::string parameterText(const py::handle& given) {
   return py::str(value);
 }
 
-// An integer argument in [lo, hi], compared as a Python integer: 2**63 is a ValueError naming the
-// argument, not pybind11's TypeError about the signature.
-long long integerArgument(const py::int_& value, const std::string& name, long long lo, long long hi,
-                          const std::string& why) {
-  if (value < py::int_(lo) || value > py::int_(hi))
-    throw py::value_error(name + " is " + py::str(static_cast<const py::object&>(value)).cast<std::string>() + ": " + why);
-  return value.cast<long long>();
-}
-
 // libgomp's thread pool does not survive fork(): a process forked from one that ran a parallel region
 // waits forever in its first own (multiprocessing's default start method on Linux). Such a child plans
 // on one thread, which gives the same result, and says so.

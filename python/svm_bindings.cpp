@@ -3,6 +3,7 @@
 // evaluator (svm/truncated_evaluator.hpp), on one point or on rows of an array.
 #include <pybind11/stl.h>
 
+#include <limits>
 #include <optional>
 
 #include "python/arrays.hpp"
@@ -50,8 +51,22 @@ py::object evaluate(const Model& m, const py::object& x, bool with_gradient, boo
   return with_gradient ? py::object(gradients) : py::object(values);
 }
 
-Model train(const py::object& X_in, const py::object& y_in, const py::object& C_in, std::optional<double> gamma,
-            std::optional<double> sigma, double eps, long max_iterations, double cache_mb, bool shrinking) {
+// An optional number argument: None, or a real number (numberArgument).
+std::optional<double> optionalNumber(const py::object& value, const std::string& name) {
+  if (value.is_none()) return std::nullopt;
+  return numberArgument(value, name);
+}
+
+Model train(const py::object& X_in, const py::object& y_in, const py::object& C_in, const py::object& gamma_in,
+            const py::object& sigma_in, const py::object& eps, const py::object& max_iterations_in,
+            const py::object& cache_mb, bool shrinking) {
+  const std::optional<double> gamma = optionalNumber(gamma_in, "gamma"), sigma = optionalNumber(sigma_in, "sigma");
+  const py::object integral = py::module_::import("numbers").attr("Integral");
+  if (py::isinstance<py::bool_>(max_iterations_in) || !py::isinstance(max_iterations_in, integral))
+    throw py::value_error("max_iterations is " + py::repr(max_iterations_in).cast<std::string>() +
+                          ": expected an integer");
+  const long long max_iterations = integerArgument(py::int_(max_iterations_in), "max_iterations", 1,
+                                                   std::numeric_limits<long>::max(), "must be in [1, 2^63 - 1]");
   const Eigen::MatrixXd X = samplesFromArray(X_in, "X");
   const Eigen::VectorXd y = vectorFromArray(y_in, "y", X.cols());
   for (Eigen::Index i = 0; i < y.size(); ++i)
@@ -64,8 +79,9 @@ Model train(const py::object& X_in, const py::object& y_in, const py::object& C_
   if (one_C) C = Eigen::VectorXd::Constant(X.cols(), *c.data());
   else C = vectorFromArray(C_in, "C", X.cols());
   for (Eigen::Index i = 0; i < C.size(); ++i)
-    if (!(C[i] > 0)) throw py::value_error("C" + (one_C ? "" : "[" + std::to_string(i) + "]") + " is " +
-                                           numberText(C[i]) + ": must be > 0");
+    if (!(C[i] > 0 && std::isfinite(C[i])))
+      throw py::value_error("C" + (one_C ? "" : "[" + std::to_string(i) + "]") + " is " + numberText(C[i]) +
+                            ": must be positive and finite");
   if (gamma && sigma) throw py::value_error("gamma and sigma: give one of them (gamma = 1 / (2 sigma^2))");
   if (gamma && !(*gamma > 0 && std::isfinite(*gamma)))
     throw py::value_error("gamma is " + numberText(*gamma) + ": must be positive and finite");
@@ -76,7 +92,10 @@ Model train(const py::object& X_in, const py::object& y_in, const py::object& C_
                           " is out of a double's range");
   const svm::Kernel kernel = sigma ? svm::Kernel::rbfFromSigma(*sigma) : svm::Kernel::rbf(gamma.value_or(1.0));
   svm::SolverOptions options;
-  options.eps = eps, options.max_iterations = max_iterations, options.cache_mb = cache_mb, options.shrinking = shrinking;
+  options.eps = numberArgument(eps, "eps");
+  options.max_iterations = max_iterations;
+  options.cache_mb = numberArgument(cache_mb, "cache_mb");
+  options.shrinking = shrinking;
   if (const std::string why = options.validate(); !why.empty()) throw py::value_error("solver options: " + why);
   Model m;
   {
@@ -87,6 +106,14 @@ Model train(const py::object& X_in, const py::object& y_in, const py::object& C_
   if (m.model.numSupportVectors() > 0) m.truncated.emplace(m.model);
   for (Eigen::Index i = 0; i < X.cols(); ++i)
     if (m.solution.alpha[i] > 0) m.support_indices.push_back(static_cast<long>(i));
+  // libsvm says so too; the model is still feasible, and `converged` tells it apart.
+  if (m.solution.status != svm::SolverStatus::kOptimal &&
+      PyErr_WarnEx(PyExc_RuntimeWarning,
+                   ("svmp.train: stopped after " + std::to_string(m.solution.iterations) +
+                    " iterations (max_iterations) before the optimality gap reached eps; the model is not optimal")
+                       .c_str(),
+                   1) != 0)
+    throw py::error_already_set();
   return m;
 }
 
@@ -119,7 +146,7 @@ void bindSvm(py::module_& m) {
            py::arg("x"), py::arg("truncated") = false, "grad F at x: shape (d,) for one point, (n, d) for rows")
       .def("__repr__", [](const Model& s) {
         return "<svmp.Model d=" + std::to_string(s.model.dim()) + " support_vectors=" +
-               std::to_string(s.model.numSupportVectors()) + " gamma=" + std::to_string(s.model.kernel().gamma) + ">";
+               std::to_string(s.model.numSupportVectors()) + " gamma=" + numberText(s.model.kernel().gamma) + ">";
       });
   m.def("train", &train, py::arg("X"), py::arg("y"), py::arg("C") = 1.0, py::arg("gamma") = py::none(),
         py::arg("sigma") = py::none(), py::arg("eps") = 1e-3, py::arg("max_iterations") = 10'000'000L,

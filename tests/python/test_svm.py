@@ -103,6 +103,12 @@ def test_sigma_is_gamma_one_over_two_sigma_squared(two_rings):
     ({"sigma": 0.0}, "sigma is 0"),
     ({"gamma": 1.0, "sigma": 1.0}, "give one of them"),
     ({"C": -2.0}, "C is -2"),
+    ({"C": float("inf")}, "C is inf: must be positive and finite"),
+    ({"gamma": "1"}, "gamma is '1': expected a real number"),
+    ({"sigma": 1j}, "sigma is 1j: expected a real number"),
+    ({"eps": None}, "eps is None: expected a real number"),
+    ({"max_iterations": 2**63}, r"max_iterations is 9223372036854775808: must be in \[1, 2\^63 - 1\]"),
+    ({"max_iterations": 1e6}, "max_iterations is 1000000.0: expected an integer"),
 ])
 def test_bad_parameters_raise_value_error(two_rings, kwargs, message):
     X, y = two_rings
@@ -128,3 +134,18 @@ def test_bad_arrays_raise_value_error(two_rings, model):
         model.gradient(np.array([0.0, np.inf]))
     with pytest.raises(ValueError, match="one class only|two classes|class"):
         svmp.train(X, np.ones(len(X)))
+    with pytest.raises(ValueError, match="X: expected real numbers, got an array of complex numbers"):
+        svmp.train(X + 1j, y)
+
+
+def test_a_solve_stopped_by_its_iteration_limit_warns(two_rings):
+    X, y = two_rings
+    with pytest.warns(RuntimeWarning, match="stopped after 5 iterations"):
+        m = svmp.train(X, y, C=1e6, gamma=10.0, max_iterations=5)
+    assert not m.converged
+    assert abs(m.alpha @ y) < 1e-9  # still feasible
+
+
+def test_repr_gives_gamma_in_full():
+    X = np.array([[0.0, 0.0], [1.0, 1.0]])
+    assert "gamma=1e-07>" in repr(svmp.train(X, np.array([1.0, -1.0]), gamma=1e-7))
