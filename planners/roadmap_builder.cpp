@@ -103,7 +103,8 @@ bool connectShortestFirst(Roadmap& roadmap, const NearestNeighbors& nn, const Pl
 }
 
 constexpr int kScreenLevels = 2;  // provenPath's cheap passes: the midpoint, then the quarter points
-// Searches after which provenPath screens every unchecked edge's midpoint at once (below).
+// Searches after which provenPath screens every unchecked edge's midpoint at once, and twice as many
+// after which it screens their quarter points (below).
 constexpr int kSearchesBeforeScreeningAll = 32;
 
 std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningContext& context, Roadmap* milestones,
@@ -133,10 +134,13 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
     // A search removes one or two failing edges; on the arms' lazy roadmaps a query that then fails
     // searched hundreds of times, each search a pass over the whole roadmap (Fig 4.4: 260-310
     // searches, 5-8 ms, against 2-3k collision checks). Past a few dozen searches every unchecked
-    // edge's midpoint is checked at once, a check per edge, and the failures removed.
-    if (searches == kSearchesBeforeScreeningAll) {
+    // edge's midpoint is checked at once, a check per edge, and the failures removed; past twice as
+    // many, their quarter points: edges across a board thinner than a tenth of their length pass the
+    // midpoint (a point robot between shelf compartments 0.05 thick: 110-252 searches a run, 43% of
+    // svmp's time, then 76-107; docs/reproduction.md, thirty-third session).
+    if (searches % kSearchesBeforeScreeningAll == 0 && searches / kSearchesBeforeScreeningAll <= kScreenLevels) {
       std::vector<std::pair<int, int>> failed;
-      level = 1;
+      level = searches / kSearchesBeforeScreeningAll;
       for (int u = 0; u < roadmap.numNodes(); ++u)
         for (const Edge& e : roadmap.neighbours(u))
           if (!e.checked && e.to > u && !levelFree(roadmap.node(u), roadmap.node(e.to))) failed.emplace_back(u, e.to);
