@@ -287,6 +287,7 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   }
 
   // The shortest valid path that the certifier proves.
+  const std::string cut_short = result.status == PlanStatus::kTimeout ? result.message : "";
   std::vector<int> order;
   for (int i = 0; i < static_cast<int>(trace_.trials.size()); ++i)
     if (trace_.trials[i].valid) order.push_back(i);
@@ -304,6 +305,9 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     }
   }
   if (trace_.chosen >= 0) {
+    if (!cut_short.empty())  // an anytime answer: the patterns left untried might have given a shorter path
+      result.warnings.push_back(cut_short + " of the " + std::to_string(wanted) +
+                                " wanted: the shortest certified path among them is returned");
     const SvppTrial& chosen = trace_.trials[trace_.chosen];
     result.support_vectors = chosen.model.numSupportVectors();
     chosen_samples_.points = chosen.samples.X;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "planners/path_simplifier.hpp"
 #include "robots/point_robot.hpp"
 
 namespace svmp::planners {
@@ -212,6 +213,16 @@ SvmSmoothing smoothPathBySvm(const std::vector<Eigen::VectorXd>& given,
       out.why = "segment " + std::to_string(i) + " of the smoothed path is not proven free";
       return out;
     }
+  // The smoothing is for margin (sec. V-A): a surface that passes nearer an obstacle than the given
+  // path does (a corridor's open ends bend it towards the walls) is no improvement.
+  const double step = certifier.resolution() / 4;
+  if (const double before = minClearance(given, checker, space, step),
+      after = minClearance(follow.path, checker, space, step);
+      after < before) {
+    out.why = "the smoothed path's clearance " + std::to_string(after) + " is below the given path's " +
+              std::to_string(before);
+    return out;
+  }
   out.path = follow.path;
   out.smoothed = true;
   return out;

@@ -15,7 +15,8 @@
 //   - the RBF SVM of the planner's parameters and the surface followed from start to goal (2-D: the
 //     arc search of Fig. 3; 3-D: the plane fit of Fig. 5, heading for the point d_g ahead on the
 //     given path),
-//   - every segment proven free by the certifier. When any step fails, the given path is kept.
+//   - every segment proven free by the certifier, and its minimum clearance at least the given
+//     path's (the smoothing is for margin). When any step fails, the given path is kept.
 // Thread safety: a pure function (one workspace per thread); the checker and certifier are used
 // through their const methods.
 #include <Eigen/Core>

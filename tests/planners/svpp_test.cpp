@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cspace/certified_motion_validator.hpp"
+#include "planners/path_simplifier.hpp"
 #include "planners/svpp_planner.hpp"
 #include "planners/svpp_smoothing.hpp"
 #include "test_world.hpp"
@@ -356,6 +357,19 @@ TEST(SvppTest, TheTimeLimitStopsASurfaceFollowing) {
   EXPECT_EQ(trials.back().follow.status, FollowStatus::kStopped);
 }
 
+TEST(SvppTest, ATimeLimitAfterAPathReturnsItWithAWarning) {
+  const CertifiedWorld w(kSymmetric);
+  auto planner = w.planner(cspace::ParameterSet("test.yaml", "planners.svpp.", {}));
+  const auto& trials = dynamic_cast<const SvppPlanner&>(*planner).trace().trials;
+  // The limit fires once the first pattern has given a path, before the others are tried.
+  const PlanResult r = planner->solve(
+      w.world->query(), 1, Termination::when([&] { return !trials.empty() && trials.front().valid; }));
+  ASSERT_EQ(trials.size(), 1u);
+  EXPECT_EQ(r.status, PlanStatus::kSolved) << r.message;
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("time limit reached after 1 patterns"), std::string::npos) << r.warnings[0];
+}
+
 TEST(SvppTest, SmoothingFollowsTheSeparatingLineOfAGivenPath) {
   const CertifiedWorld w(kSymmetric);
   // A certified zig-zag through the gap between the two obstacles, with a turn of 88 deg.
@@ -387,6 +401,27 @@ TEST(SvppTest, SmoothingFollowsTheSeparatingLineOfAGivenPath) {
       smoothPathBySvm(arm_path, arm->checker, arm_certifier, arm->space, SvppOptions{});
   EXPECT_FALSE(kept.smoothed);
   EXPECT_EQ(kept.path, arm_path);
+}
+
+// A probe's corridor: a straight path along its centreline already has the largest margin there is,
+// and the open ends bend the separating line towards the walls (clearance 0.10 -> 0.017 before the
+// smoothing compared them). Smoothing never returns a path with less clearance than it was given.
+TEST(SvppTest, SmoothingKeepsAPathWhoseClearanceItWouldLower) {
+  const CertifiedWorld w(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [10, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: top, shape: box, size: [8, 0.4, 1.0], position: [5, 0.8]}\n"
+      "  - {name: bottom, shape: box, size: [8, 0.4, 1.0], position: [5, 0.2]}\n"
+      "start: [0.2, 0.5]\ngoal: [9.8, 0.5]\nresolution: 0.01\n");
+  const std::vector<Eigen::VectorXd> centreline = {Eigen::Vector2d(0.2, 0.5), Eigen::Vector2d(9.8, 0.5)};
+  const double step = 0.01 / 4;
+  const double given = minClearance(centreline, w.world->checker, w.world->space, step);
+  ASSERT_NEAR(given, 0.1, 1e-6);
+  const SvmSmoothing s = smoothPathBySvm(centreline, w.world->checker, *w.certifier, w.world->space, SvppOptions{});
+  EXPECT_GE(minClearance(s.path, w.world->checker, w.world->space, step), given);
+  EXPECT_FALSE(s.smoothed);
+  EXPECT_EQ(s.path, centreline);
+  EXPECT_NE(s.why.find("clearance"), std::string::npos) << s.why;
 }
 
 // Surface following against its definition (Miura 2006 secs. III-B-5 and IV-B-4), on a model whose
