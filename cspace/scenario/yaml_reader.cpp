@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <numbers>
+#include <regex>
 #include <sstream>
 
 #include "cspace/scenario/scenario.hpp"
@@ -346,8 +347,12 @@ void Reader::requireList(const YAML::Node& n, const std::string& field, size_t m
 double Reader::number(const YAML::Node& n, const std::string& field) const {
   if (!n.IsScalar()) fail(field, "expected a number, got " + text(n));
   double v = 0;
-  if (!parseNumber(n.Scalar(), v)) fail(field, "expected a number, got " + text(n));
-  if (!std::isfinite(v)) fail(field, "expected a finite number (in the range of a double), got " + text(n));
+  // YAML's own spellings of infinity and NaN (.inf, -.Inf, .nan, ...) get the message inf and nan get.
+  static const std::regex yaml_special(R"([-+]?\.(inf|Inf|INF)|\.(nan|NaN|NAN))");
+  const bool special = std::regex_match(n.Scalar(), yaml_special);
+  if (!special && !parseNumber(n.Scalar(), v)) fail(field, "expected a number, got " + text(n));
+  if (special || !std::isfinite(v))
+    fail(field, "expected a finite number (in the range of a double), got " + text(n));
   return v;
 }
 

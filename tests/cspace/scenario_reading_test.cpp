@@ -24,6 +24,13 @@ TEST(ScenarioReadingTest, APiFractionNeedsAFiniteNonZeroDivisor) {
   EXPECT_DOUBLE_EQ(s.queries[0].start[1], 2 * std::numbers::pi);
 }
 
+TEST(ScenarioReadingTest, YamlsInfinityAndNanReadAsInfAndNanDo) {
+  for (const char* bad : {"nan", "inf", "-inf", ".nan", ".NaN", ".inf", "-.Inf", "+.INF"})
+    expectError(with(kPoint, "start: [1, 5]", std::string("start: [1, ") + bad + "]"),
+                {"start[1]", "expected a finite number", bad});
+  expectError(with(kPoint, "start: [1, 5]", "start: [1, .nanx]"), {"start[1]", "expected a number", ".nanx"});
+}
+
 TEST(ScenarioReadingTest, AnAliasCountsAsTheNodesItNames) {
   // 1,001 aliases of a 1,000-number list: a small file that would expand to a million values.
   std::string list = "[", refs = "[";
