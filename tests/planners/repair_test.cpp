@@ -212,6 +212,13 @@ TEST(NarrowPassage, SvmpLastTreesHookAnArmOverAWall) {
   expectSvmpSolvesCertified("../unseen/planar4_channel.yaml", {1, 3});
 }
 
+// A point between shelf compartments behind boards 0.05 thick (bench/unseen, a probe of the
+// thirty-third session): the lazy query searches about a hundred times on these seeds (250 before
+// every unchecked edge's quarter points were screened after 64). Certified, densely free.
+TEST(NarrowPassage, SvmpLazyQueryThroughThinShelfBoards) {
+  expectSvmpSolvesCertified("../unseen/shelf3d.yaml", {1, 2});
+}
+
 // Fig 4.4's seeds 4, 5 and 11 ended with the start's and the goal's components (1,300 and 500-1,100
 // nodes) unjoined after 20 SVM-guided repair rounds; the trees join them. Certified, densely free.
 TEST(TreeConnect, SvmpRepairSolvesFig44WhereGuidedRoundsAloneDidNot) {
