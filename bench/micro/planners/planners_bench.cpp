@@ -1,4 +1,5 @@
-// Hot paths of the planners: obstacle sampling (thesis Algorithm 1), milestone descent on the risk
+// Hot paths of the planners: obstacle sampling (thesis Algorithm 1), the colouring of obstacle classes,
+// milestone descent on the risk
 // function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric
 // (a fixed set, and one growing as a repair grows it), one query on a built SVMP roadmap (many queries, `svmp-plan --queries`), a lazy query's repeated
 // searches, and the eager pass that connects a roadmap's milestones (node order, as the thesis, or
@@ -8,6 +9,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
 #include <optional>
 #include <random>
@@ -15,6 +17,7 @@
 
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
+#include "planners/class_colouring.hpp"
 #include "planners/obstacle_sampler.hpp"
 #include "cspace/scenario/scenario.hpp"
 #include "bench/experiments/experiment.hpp"
@@ -192,6 +195,24 @@ void BM_ClassNeighbourhoods(benchmark::State& state) {
   state.SetLabel(state.range(0) == 0 ? "fig4_10" : "panda_shelf");
 }
 BENCHMARK(BM_ClassNeighbourhoods)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The colouring of obstacle classes (planners/class_colouring.hpp) over every sample of forest_200
+// (arg 0: 200 discs, a point robot) and of panda_shelf's seven obstacles (arg 1), as
+// SvmpPlanner::trainMultiSvm calls it (adjacent within 3 sigma), built with the files' parameters.
+void BM_ObstacleColouring(benchmark::State& state) {
+  static BuiltSvmp forest("forest_200.yaml", false), shelf("panda_shelf.yaml", false);
+  BuiltSvmp& w = state.range(0) == 0 ? forest : shelf;
+  const planners::ObstacleSamples& samples = w.svmp.samples();
+  std::map<int, int> colours;
+  for (auto _ : state)
+    colours = planners::colourClasses(samples.points, samples.labels, w.space.metricScale(), 3 * w.svmp.options().sigma);
+  int most = 0;
+  for (const auto& [label, c] : colours) most = std::max(most, c);
+  state.counters["samples"] = samples.size();
+  state.counters["colours"] = most;
+  state.SetLabel(state.range(0) == 0 ? "forest_200" : "panda_shelf");
+}
+BENCHMARK(BM_ObstacleColouring)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // One query per iteration on SVMP's roadmap built with the file's parameters (seed 1): the roadmap is
 // assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers in turn the 100
