@@ -196,23 +196,22 @@ void BM_ClassNeighbourhoods(benchmark::State& state) {
 }
 BENCHMARK(BM_ClassNeighbourhoods)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
-// The colouring of obstacle classes (planners/class_colouring.hpp) over every sample of forest_200
-// (arg 0: 200 discs, a point robot) and of panda_shelf's seven obstacles (arg 1), as
-// SvmpPlanner::trainMultiSvm calls it (adjacent within 3 sigma), built with the files' parameters.
+// The colouring of obstacle classes (planners/class_colouring.hpp) over forest_200's samples (200
+// boxes, a point robot), as SvmpPlanner::trainMultiSvm calls it (adjacent within 3 sigma), built with
+// the file's parameters (seed 1).
 void BM_ObstacleColouring(benchmark::State& state) {
-  static BuiltSvmp forest("forest_200.yaml", false), shelf("panda_shelf.yaml", false);
-  BuiltSvmp& w = state.range(0) == 0 ? forest : shelf;
-  const planners::ObstacleSamples& samples = w.svmp.samples();
+  static BuiltSvmp forest("forest_200.yaml", false);
+  const planners::ObstacleSamples& samples = forest.svmp.samples();
   std::map<int, int> colours;
   for (auto _ : state)
-    colours = planners::colourClasses(samples.points, samples.labels, w.space.metricScale(), 3 * w.svmp.options().sigma);
+    colours = planners::colourClasses(samples.points, samples.labels, forest.space.metricScale(),
+                                      3 * forest.svmp.options().sigma);
   int most = 0;
   for (const auto& [label, c] : colours) most = std::max(most, c);
   state.counters["samples"] = samples.size();
   state.counters["colours"] = most;
-  state.SetLabel(state.range(0) == 0 ? "forest_200" : "panda_shelf");
 }
-BENCHMARK(BM_ObstacleColouring)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ObstacleColouring)->Unit(benchmark::kMicrosecond);
 
 // One query per iteration on SVMP's roadmap built with the file's parameters (seed 1): the roadmap is
 // assigned to a reused copy, as SvmpPlanner::answer does, and queryRoadmap answers in turn the 100
