@@ -3,6 +3,8 @@ add_library(svmp_settings INTERFACE)
 # Includes are written from the repository root ("svm/kernel.hpp"); installed, from include/svmp.
 target_include_directories(svmp_settings INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
                                                    $<INSTALL_INTERFACE:include/svmp>)
+# The headers need C++20; a project linking the installed package gets it with them.
+target_compile_features(svmp_settings INTERFACE cxx_std_20)
 target_compile_options(svmp_settings INTERFACE $<BUILD_INTERFACE:-Wall -Wextra -Wpedantic -Wno-unused-parameter>)
 if(SVMP_NATIVE)
   target_compile_options(svmp_settings INTERFACE -march=native)

@@ -28,7 +28,11 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/svmpConfig.cmake ${CMAKE_CURRENT_BINAR
 # it and plan with it.
 if(SVMP_BUILD_TESTS)
   set(prefix ${CMAKE_CURRENT_BINARY_DIR}/install_test)
+  set(ompl_example "")
+  if(SVMP_WITH_OMPL)  # the OMPL example on its own against the package, as the README builds it
+    set(ompl_example " && cmake -S '${PROJECT_SOURCE_DIR}/examples/ompl' -B '${prefix}/ompl' -DCMAKE_PREFIX_PATH='${prefix}/usr' -DCMAKE_BUILD_TYPE=Release >/dev/null && cmake --build '${prefix}/ompl' >/dev/null && '${prefix}/ompl/svmp-ompl-example' '${PROJECT_SOURCE_DIR}/bench/scenarios/thesis_fig3_5.yaml' >/dev/null")
+  endif()
   add_test(NAME install_and_find_package
-           COMMAND sh -c "rm -rf '${prefix}' && cmake --install '${CMAKE_BINARY_DIR}' --prefix '${prefix}/usr' >/dev/null && cmake -S '${PROJECT_SOURCE_DIR}/examples/consumer' -B '${prefix}/build' -DCMAKE_PREFIX_PATH='${prefix}/usr' -DCMAKE_BUILD_TYPE=Release >/dev/null && cmake --build '${prefix}/build' >/dev/null && '${prefix}/build/consumer' '${PROJECT_SOURCE_DIR}/bench/scenarios/thesis_fig3_5.yaml' svmp ompl-rrtconnect")
+           COMMAND sh -c "rm -rf '${prefix}' && cmake --install '${CMAKE_BINARY_DIR}' --prefix '${prefix}/usr' >/dev/null && cmake -S '${PROJECT_SOURCE_DIR}/examples/consumer' -B '${prefix}/build' -DCMAKE_PREFIX_PATH='${prefix}/usr' -DCMAKE_BUILD_TYPE=Release >/dev/null && cmake --build '${prefix}/build' >/dev/null && '${prefix}/build/consumer' '${PROJECT_SOURCE_DIR}/bench/scenarios/thesis_fig3_5.yaml' svmp ompl-rrtconnect${ompl_example}")
   set_tests_properties(install_and_find_package PROPERTIES TIMEOUT 600)
 endif()

@@ -7,6 +7,7 @@
 
 #include <limits>
 #include <mutex>
+#include <tuple>
 
 #include "planners/ompl/foreign_checker.hpp"
 #include "planners/ompl/state_bridge.hpp"
@@ -150,8 +151,22 @@ ob::PlannerStatus SvmOmplPlannerBase::solve(const ob::PlannerTerminationConditio
     return ob::PlannerStatus::ABORT;
   }
   const auto* goal = dynamic_cast<const ob::GoalState*>(pdef_->getGoal().get());
-  if (!goal) return ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE;
+  if (!goal) {
+    OMPL_ERROR("%s: the goal must be a single state (ompl::base::GoalState)", getName().c_str());
+    return ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE;
+  }
   if (pdef_->getStartStateCount() == 0) return ob::PlannerStatus::INVALID_START;
+  // Beyond the bounds, as OMPL's own planners skip such a start: toConfiguration keeps states within
+  // the joint limits, and a path from the limit is not a path from the start given.
+  using Check = std::tuple<const ob::State*, const char*, PlanStatus>;
+  for (const auto& [state, which, status] : {Check{pdef_->getStartState(0), "start", PlanStatus::kInvalidStart},
+                                             Check{goal->getState(), "goal", PlanStatus::kInvalidGoal}})
+    if (!si_->satisfiesBounds(state)) {
+      last_.status = status;
+      last_.message = std::string("the ") + which + " state is outside the state space's bounds";
+      OMPL_ERROR("%s: %s", getName().c_str(), last_.message.c_str());
+      return omplStatus(status);
+    }
   const cspace::Query query{toConfiguration(pdef_->getStartState(0), context_->space),
                             toConfiguration(goal->getState(), context_->space), {}};
   // OMPL's condition caches its answer in a plain bool; our planners poll from OpenMP threads.

@@ -258,6 +258,26 @@ TEST(OmplPlanners, AUsersCheckerIsUsedByThePrm) {
   }
 }
 
+// A probe's finding: states were kept within the bounds on the way in, so a start at (-3, 0.5) gave an
+// "exact" path from (0, 0.5). OMPL's own planners skip such a start; ours now refuse it, and a goal so.
+TEST(OmplPlanners, AStartOrGoalBeyondTheBoundsIsInvalid) {
+  for (const bool start_out : {true, false}) {
+    std::shared_ptr<DiscChecker> checker;
+    auto setup = discSetup(checker);
+    const auto space = setup->getStateSpace();
+    ob::ScopedState<> start(space), goal(space);
+    start[0] = start_out ? -3.0 : 0.2, start[1] = 0.2;
+    goal[0] = 0.8, goal[1] = start_out ? 0.8 : 1.5;
+    setup->setStartAndGoalStates(start, goal);
+    auto prm = std::make_shared<PrmOmplPlanner>(setup->getSpaceInformation());
+    setup->setPlanner(prm);
+    EXPECT_EQ(setup->solve(1.0), start_out ? ob::PlannerStatus::INVALID_START : ob::PlannerStatus::INVALID_GOAL);
+    EXPECT_FALSE(setup->haveExactSolutionPath());
+    EXPECT_NE(prm->lastResult().message.find(start_out ? "start state is outside" : "goal state is outside"),
+              std::string::npos) << prm->lastResult().message;
+  }
+}
+
 TEST(OmplPlanners, SvmpRefusesAUsersCheckerAndSaysWhy) {
   std::shared_ptr<DiscChecker> checker;
   auto setup = discSetup(checker);
