@@ -6,6 +6,18 @@
 
 namespace svmp::cspace {
 
+namespace {
+thread_local const MotionStopScope* innermost_stop = nullptr;
+}  // namespace
+
+MotionStopScope::MotionStopScope(std::function<bool()> stop) : stop_(std::move(stop)), outer_(innermost_stop) {
+  innermost_stop = this;
+}
+
+MotionStopScope::~MotionStopScope() { innermost_stop = outer_; }
+
+bool MotionStopScope::stopped() { return innermost_stop && innermost_stop->stop_ && innermost_stop->stop_(); }
+
 bool MotionValidator::isValidIncludingEnd(const Eigen::Ref<const Eigen::VectorXd>& a,
                                           const Eigen::Ref<const Eigen::VectorXd>& b) const {
   if (!checker().isValid(b)) {
@@ -59,6 +71,7 @@ class Bisection {
     const std::int64_t mid = lo + (hi - lo) / 2;
     if (depth > 0) return level(lo, mid, depth - 1) && level(mid, hi, depth - 1);
     deeper_ = deeper_ || hi - mid >= 2;  // [mid, hi) is the wider half
+    if (++checked_ % kStopPollChecks == 0 && MotionStopScope::stopped()) return false;
     space_.interpolate(a_, b_, static_cast<double>(mid) / segments_, q_);
     return checker_.isValid(q_);
   }
@@ -70,6 +83,7 @@ class Bisection {
   const std::int64_t segments_;
   Eigen::VectorXd q_;
   bool deeper_ = false;
+  std::int64_t checked_ = 0;
 };
 
 }  // namespace
@@ -91,7 +105,7 @@ bool DiscreteMotionValidator::checkMotion(const Eigen::Ref<const Eigen::VectorXd
   Eigen::VectorXd q(a.size());
   for (std::int64_t i = 1; i <= segments; ++i) {
     space_.interpolate(a, b, static_cast<double>(i) / segments, q);
-    if (!checker_.isValid(q)) {
+    if ((i % kStopPollChecks == 0 && MotionStopScope::stopped()) || !checker_.isValid(q)) {
       last_valid = static_cast<double>(i - 1) / segments;
       return false;
     }

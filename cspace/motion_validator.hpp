@@ -8,6 +8,7 @@
 // Thread safety: every const method may be called from many threads at once (the counter is atomic).
 #include <atomic>
 #include <cstdint>
+#include <functional>
 
 #include "cspace/configuration_space.hpp"
 #include "cspace/validity_checker.hpp"
@@ -17,6 +18,27 @@ namespace svmp::cspace {
 // The most configurations one segment may need; a longer one is refused (std::length_error naming the
 // resolution and the segment's length), never reported free.
 inline constexpr std::int64_t kMaxSegmentChecks = std::int64_t{1} << 30;
+
+// The calling thread's stop for long segments, in force while the scope lives (planners::Planner opens
+// one around each solve, build and query with its time limit): a segment polls it every
+// kStopPollChecks configurations and, when it fires, is reported blocked. Blocked is the safe answer
+// (no path is made of it), and the planner, polling the same stop, then ends with its time limit. A
+// segment of 2^30 checks took 55 s whatever the limit. Threads that did not open a scope never stop
+// a segment (an OpenMP team's other threads check short steps).
+class MotionStopScope {
+ public:
+  explicit MotionStopScope(std::function<bool()> stop);
+  ~MotionStopScope();
+  MotionStopScope(const MotionStopScope&) = delete;
+  MotionStopScope& operator=(const MotionStopScope&) = delete;
+  // Whether the innermost scope of this thread has fired (false without one).
+  static bool stopped();
+
+ private:
+  std::function<bool()> stop_;
+  const MotionStopScope* outer_;
+};
+inline constexpr std::int64_t kStopPollChecks = 4096;
 
 class MotionValidator {
  public:

@@ -144,6 +144,7 @@ class OmplPlanner final : public Planner {
                              : stop.hasDeadline()   ? std::numeric_limits<double>::infinity()
                                                     : OmplOptions::kDefaultTimeLimit;
     const Termination until = Termination::when([&stop] { return stop(); }, Termination::after(own_limit));
+    const cspace::MotionStopScope motion_stop(until.asFunction());  // OMPL's own limit stops a long segment too
     const ob::PlannerStatus status = planner->solve(ob::PlannerTerminationCondition([&until] { return until(); }));
     result.times.query_ms += msSince(t0);
     // Counting copies the roadmap out (1.4 s for ompl-prm's 69k milestones after a 2 s timeout):

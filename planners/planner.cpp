@@ -115,6 +115,7 @@ void Planner::certify(PlanResult& result, std::uint64_t seed, const Termination&
 
 PlanResult Planner::build(std::uint64_t seed, const Termination& stop) {
   clear();
+  const cspace::MotionStopScope motion_stop(stop.asFunction());
   const CounterScope scope(context_);
   PlanResult result;
   buildRoadmap(seed, stop, result);
@@ -125,6 +126,7 @@ PlanResult Planner::build(std::uint64_t seed, const Termination& stop) {
 
 PlanResult Planner::query(const cspace::Query& q, std::uint64_t seed, const Termination& stop) {
   if (!built_) throw std::logic_error(name() + ": query() before a successful build()");
+  const cspace::MotionStopScope motion_stop(stop.asFunction());
   clearQuery();
   straight_motion_blocked_ = false;
   const CounterScope scope(context_);
@@ -139,13 +141,14 @@ PlanResult Planner::query(const cspace::Query& q, std::uint64_t seed, const Term
 
 PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Termination& stop) {
   clear();
+  const cspace::MotionStopScope motion_stop(stop.asFunction());
   straight_motion_blocked_ = false;
   const CounterScope scope(context_);
   PlanResult result;
   if (checkEndpoints(context_, q, result)) {
     straight_motion_blocked_ = triesStraightMotionFirst() && !straightMotionAnswers(context_, q, result);
-    // One motion check is not interrupted (at most cspace::kMaxSegmentChecks configurations): a limit
-    // it used up ends the run here, saying so, and a path it found stands.
+    // A limit that fires during the motion's check ends the run here, saying so (the check reports
+    // the motion blocked), and a path it found stands.
     if (straight_motion_blocked_ && stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached while checking the straight start-goal motion";

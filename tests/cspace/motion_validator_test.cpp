@@ -181,5 +181,28 @@ TEST(MotionValidatorTest, BisectionChecksInTheOrderOfAQueueOfIntervals) {
   for (size_t k = 0; k < 5; ++k) EXPECT_NEAR(walled.asked[k], expected[k], 1e-8) << k;
 }
 
+// A free segment of 2^20 checks: the calling thread's stop scope ends its check at a poll, reporting
+// it blocked; a scope that never fires, or none, lets it run to the end. Scopes nest.
+TEST(MotionValidatorTest, AStopScopeEndsALongSegmentsCheckAsBlocked) {
+  WallWorld world(5, 0.1);
+  const Eigen::Vector2d a(1, 9), b(9, 9);  // a free row
+  const DiscreteMotionValidator validator(world.checker, world.space, 8.0 / (1 << 20));
+  int polls = 0;
+  {
+    const MotionStopScope never([] { return false; });
+    const MotionStopScope third([&polls] { return ++polls >= 3; });
+    const std::uint64_t before = world.checker.collisionChecks();
+    EXPECT_FALSE(validator.isValid(a, b));
+    EXPECT_EQ(polls, 3);
+    EXPECT_EQ(world.checker.collisionChecks() - before, 3 * kStopPollChecks - 1);
+    double last_valid = -1;
+    EXPECT_FALSE(validator.checkMotion(a, b, last_valid));
+    EXPECT_DOUBLE_EQ(last_valid, (kStopPollChecks - 1.0) / (1 << 20));  // the first poll fired
+  }
+  EXPECT_FALSE(MotionStopScope::stopped());
+  const MotionStopScope never([] { return false; });
+  EXPECT_TRUE(validator.isValid(a, b));
+}
+
 }  // namespace
 }  // namespace svmp::cspace
