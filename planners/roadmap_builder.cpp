@@ -125,12 +125,15 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
     }
     return true;
   };
-  // Removes the edge u-v, from the shared roadmap too.
+  // Removes the edge u-v, from the shared roadmap too; not when the time limit cut its check short
+  // (cspace::MotionStopScope): that proves nothing, and the shared roadmap serves later queries.
   const auto remove = [&](int u, int v) {
+    if (cspace::MotionStopScope::stopped()) return;
     roadmap.removeEdge(u, v);
     if (milestones && u < shared && v < shared) milestones->removeEdge(u, v);
   };
   for (int searches = 1;; ++searches) {
+    if (cspace::MotionStopScope::stopped()) return {};  // the time limit: the caller reports it
     // A search removes one or two failing edges; on the arms' lazy roadmaps a query that then fails
     // searched hundreds of times, each search a pass over the whole roadmap (Fig 4.4: 260-310
     // searches, 5-8 ms, against 2-3k collision checks). Past a few dozen searches every unchecked
