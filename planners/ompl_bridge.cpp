@@ -175,6 +175,11 @@ class OmplPlanner final : public Planner {
       result.message = result.status == PlanStatus::kTimeout
                            ? "time limit reached without a solution (OMPL: " + status.asString() + ")"
                            : std::string("OMPL: ") + status.asString();
+      // The query's ends are free on the exact checker (checkEndpoints): a learned proxy called them not.
+      if (context_.repairer && (status == ob::PlannerStatus::INVALID_START || status == ob::PlannerStatus::INVALID_GOAL))
+        result.message += std::string(" (the proxy checker predicts the ") +
+                          (status == ob::PlannerStatus::INVALID_START ? "start" : "goal") +
+                          " in collision; the exact checker has it free)";
     }
     // OMPL 1.5's LazyPRM frees its roadmap's states in clear(), not in its destructor.
     planner->clear();
