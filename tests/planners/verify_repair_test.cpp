@@ -77,6 +77,12 @@ TEST(VerifyRepair, AProxysWrongEndpointPredictionDoesNotMakeTheQueryInvalid) {
   auto planner = makePlanner("prm", on_proxy, cspace::ParameterSet());
   const PlanResult r = planner->solve(query, 1, Termination::after(2));
   EXPECT_NE(r.status, PlanStatus::kInvalidGoal) << r.message;
+  // OMPL's planners take the proxy's word for a start; their failure says whose word it was.
+  const cspace::Query from_there{goal, pw.w->query().start, {}};
+  const PlanResult rrt = makePlanner("ompl-rrtconnect", on_proxy, cspace::ParameterSet())->solve(from_there, 1);
+  EXPECT_FALSE(rrt.solved());
+  EXPECT_NE(rrt.message.find("predicts the start in collision; the exact checker has it free"), std::string::npos)
+      << rrt.message;
   // Without a repairer the checker is the exact one: then its word is the query's validity.
   const PlanningContext exact_stale{pw.w->space, pw.stale->checker, pw.stale->validator, 1};
   EXPECT_EQ(makePlanner("prm", exact_stale, cspace::ParameterSet())->solve(query, 1).status, PlanStatus::kInvalidGoal);
