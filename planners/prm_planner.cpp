@@ -72,7 +72,7 @@ void PrmPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanR
   result.roadmap_edges = roadmap_.numEdges();
 }
 
-void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termination&, PlanResult& result) {
+void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termination& stop, PlanResult& result) {
   const auto t0 = Clock::now();
   with_query_ = roadmap_;
   QueryOutcome outcome =
@@ -83,6 +83,10 @@ void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termina
   result.times.certify_ms += outcome.certify_ms;
   result.status = result.path.empty() ? PlanStatus::kFailed : PlanStatus::kSolved;
   if (!result.solved()) result.message = "start and goal are not connected by the roadmap";
+  if (!result.solved() && stop()) {  // a check the limit cut short is no proof of a disconnection
+    result.status = PlanStatus::kTimeout;
+    result.message = "time limit reached during the query";
+  }
   result.milestones = roadmap_.numNodes();
   result.roadmap_edges = roadmap_.numEdges();
 }

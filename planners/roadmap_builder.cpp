@@ -125,8 +125,9 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
     }
     return true;
   };
-  // Removes the edge u-v, from the shared roadmap too; not when the time limit cut its check short
-  // (cspace::MotionStopScope): that proves nothing, and the shared roadmap serves later queries.
+  // Removes the edge u-v, from the shared roadmap too; not once the time limit has fired
+  // (cspace::MotionStopScope): a check it cut short proves nothing, the shared roadmap serves later
+  // queries, and a failure that was real is found again by them.
   const auto remove = [&](int u, int v) {
     if (cspace::MotionStopScope::stopped()) return;
     roadmap.removeEdge(u, v);

@@ -440,6 +440,13 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       result.status = PlanStatus::kSolved;
       break;
     }
+    // A limit that fired during the search (its checks were cut short) ends the query before the
+    // repairs below change the shared roadmap on the strength of them.
+    if (stop()) {
+      result.status = PlanStatus::kTimeout;
+      result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
+      break;
+    }
     // A lazy roadmap that fails first tries the cheaper repairs first, each once per query and the
     // query run again as round 0 after each: trees of half the size (joinByTrees), the build's deferred
     // centred milestones linked lazily (often what a narrow passage needs: forest_200 checked 36% more

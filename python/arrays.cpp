@@ -6,11 +6,46 @@ namespace svmp::python {
 
 std::string numberText(double v) { return py::repr(py::float_(v)); }
 
+namespace {
+
+// Text, truth values and complex numbers convert to numbers in Python (float("2"), float(np.bool_),
+// np.complex128.__float__) but are not the numbers an argument means.
+bool looksLikeNoNumber(const py::handle& value) {
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) || py::isinstance<py::bool_>(value) ||
+      PyComplex_Check(value.ptr()))
+    return true;
+  if (!py::hasattr(value, "dtype")) return false;
+  const char kind = py::dtype::from_args(value.attr("dtype")).kind();
+  return kind == 'b' || kind == 'c' || kind == 'U' || kind == 'S' || kind == 'O';
+}
+
+[[noreturn]] void refuse(const py::handle& value, const std::string& name, const std::string& why) {
+  throw py::value_error(name + " is " + py::repr(value).cast<std::string>() + ": " + why);
+}
+
+}  // namespace
+
 double numberArgument(const py::handle& value, const std::string& name) {
-  const py::object real = py::module_::import("numbers").attr("Real");
-  if (py::isinstance<py::bool_>(value) || !py::isinstance(value, real))
-    throw py::value_error(name + " is " + py::repr(value).cast<std::string>() + ": expected a real number");
-  return value.cast<double>();
+  if (looksLikeNoNumber(value)) refuse(value, name, "expected a real number");
+  PyObject* as_float = PyNumber_Float(value.ptr());  // Python and NumPy numbers, 0-d arrays, Decimal
+  if (!as_float) {
+    const bool overflow = PyErr_ExceptionMatches(PyExc_OverflowError);
+    PyErr_Clear();
+    refuse(value, name, overflow ? "out of a double's range" : "expected a real number");
+  }
+  const double v = PyFloat_AsDouble(as_float);
+  Py_DECREF(as_float);
+  return v;
+}
+
+py::int_ integerValue(const py::handle& value, const std::string& name) {
+  if (looksLikeNoNumber(value)) refuse(value, name, "expected an integer");
+  PyObject* as_int = PyNumber_Index(value.ptr());  // Python and NumPy integers, 0-d integer arrays
+  if (!as_int) {
+    PyErr_Clear();
+    refuse(value, name, "expected an integer");
+  }
+  return py::reinterpret_steal<py::int_>(as_int);
 }
 
 long long integerArgument(const py::int_& value, const std::string& name, long long lo, long long hi,

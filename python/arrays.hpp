@@ -21,9 +21,12 @@ std::string numberText(double v);
 // (ndim 2) or `cols` entries (ndim 1); every entry finite.
 DoubleArray checkedArray(const py::handle& object, const std::string& name, int ndim, long cols = -1);
 
-// A number argument (a Python or NumPy real number; not a string, complex or bool): a ValueError
-// naming the argument otherwise, not pybind11's TypeError that prints every argument.
+// A number argument (a Python or NumPy real number or 0-d array, a Decimal; not text, a truth value or
+// a complex number): a ValueError naming the argument otherwise, not pybind11's TypeError that prints
+// every argument.
 double numberArgument(const py::handle& value, const std::string& name);
+// An integer argument, as Python's operator.index takes it (not a float, text or truth value).
+py::int_ integerValue(const py::handle& value, const std::string& name);
 // An integer argument in [lo, hi], compared as a Python integer: 2**63 is a ValueError naming the
 // argument, not pybind11's TypeError about the signature.
 long long integerArgument(const py::int_& value, const std::string& name, long long lo, long long hi,

@@ -61,18 +61,15 @@ Model train(const py::object& X_in, const py::object& y_in, const py::object& C_
             const py::object& sigma_in, const py::object& eps, const py::object& max_iterations_in,
             const py::object& cache_mb, bool shrinking) {
   const std::optional<double> gamma = optionalNumber(gamma_in, "gamma"), sigma = optionalNumber(sigma_in, "sigma");
-  const py::object integral = py::module_::import("numbers").attr("Integral");
-  if (py::isinstance<py::bool_>(max_iterations_in) || !py::isinstance(max_iterations_in, integral))
-    throw py::value_error("max_iterations is " + py::repr(max_iterations_in).cast<std::string>() +
-                          ": expected an integer");
-  const long long max_iterations = integerArgument(py::int_(max_iterations_in), "max_iterations", 1,
-                                                   std::numeric_limits<long>::max(), "must be in [1, 2^63 - 1]");
+  const long long max_iterations = integerArgument(integerValue(max_iterations_in, "max_iterations"), "max_iterations",
+                                                   1, std::numeric_limits<long>::max(), "must be in [1, 2^63 - 1]");
   const Eigen::MatrixXd X = samplesFromArray(X_in, "X");
   const Eigen::VectorXd y = vectorFromArray(y_in, "y", X.cols());
   for (Eigen::Index i = 0; i < y.size(); ++i)
     if (y[i] != 1 && y[i] != -1)
       throw py::value_error("y[" + std::to_string(i) + "] is " + numberText(y[i]) + ": labels must be +1 or -1");
-  if (C_in.is_none()) throw py::value_error("C is None: give a positive number, or one per sample");
+  if (C_in.is_none() || py::isinstance<py::str>(C_in) || py::isinstance<py::bytes>(C_in))
+    throw py::value_error("C is " + py::repr(C_in).cast<std::string>() + ": give a positive number, or one per sample");
   Eigen::VectorXd C;
   const DoubleArray c = DoubleArray::ensure(C_in);
   const bool one_C = c && c.ndim() == 0;

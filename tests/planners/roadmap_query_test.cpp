@@ -128,12 +128,16 @@ TEST(RoadmapQuery, ProvenPathRemovesEdgesTheProofRefusesAndGoesRound) {
   int checks = 0;
   double certify_ms = 0;
   {
-    // Under a time limit that has fired (cspace::MotionStopScope) it gives up with no path and removes
-    // no edge on the limit's account: a later query on the shared roadmap still has them all.
-    const cspace::MotionStopScope fired([] { return true; });
-    EXPECT_TRUE(provenPath(copy, 0, 2, w->context, &milestones, checks, certify_ms).empty());
-    EXPECT_EQ(milestones.numEdges(), 5);
-    EXPECT_EQ(copy.numEdges(), 5);
+    // Under a time limit that fires (cspace::MotionStopScope) after the search's first poll, during the
+    // proofs, it gives up with no path and removes no edge on the limit's account: a later query on
+    // the shared roadmap still has them all.
+    Roadmap shared = milestones, searched = milestones;
+    int fired_checks = 0;
+    const cspace::MotionStopScope fired([polls = 0]() mutable { return ++polls > 1; });
+    EXPECT_TRUE(provenPath(searched, 0, 2, w->context, &shared, fired_checks, certify_ms).empty());
+    EXPECT_EQ(fired_checks, 2) << "the first path's sampled checks ran; its first proof failed under the limit";
+    EXPECT_EQ(shared.numEdges(), 5);
+    EXPECT_EQ(searched.numEdges(), 5);
   }
   const std::vector<int> path = provenPath(copy, 0, 2, w->context, &milestones, checks, certify_ms);
   EXPECT_EQ(path, (std::vector<int>{0, 3, 4, 2}));
@@ -492,6 +496,29 @@ TEST(RoadmapQuery, SvmpFailedQueryLeavesTheRoadmapAsItFoundIt) {
   EXPECT_NE(message.find("; trees of 3000 to 24000 uniform samples did not join them)"), std::string::npos) << message;
   EXPECT_EQ(svmp.roadmap().numNodes(), nodes);
   EXPECT_EQ(r.milestones, nodes);
+}
+
+// A query under a time limit that has fired reports `timeout`, not a disconnection its cut-short
+// checks cannot prove, and leaves the built roadmap as it was (svmp's repairs and eager pass would
+// otherwise change it for later queries).
+TEST(RoadmapQuery, AQueryPastItsTimeLimitIsATimeoutAndKeepsTheRoadmap) {
+  auto w = makeWorld(gapScenario(0.03, kPlanners));
+  w->certify();
+  for (const char* name : {"svmp", "prm"}) {
+    auto planner = w->planner(name);
+    ASSERT_TRUE(planner->build(1).solved()) << name;
+    const Roadmap before = *planner->view().roadmap;
+    const PlanResult r = planner->query(w->query(), 1, Termination::when([] { return true; }));
+    EXPECT_EQ(r.status, PlanStatus::kTimeout) << name << ": " << r.message;
+    EXPECT_EQ(planner->view().roadmap->numNodes(), before.numNodes()) << name;
+    EXPECT_EQ(planner->view().roadmap->numEdges(), before.numEdges()) << name;
+    // The next query answers as on a roadmap no limit touched.
+    auto fresh = w->planner(name);
+    ASSERT_TRUE(fresh->build(1).solved());
+    const PlanResult expected = fresh->query(w->query(), 1), next = planner->query(w->query(), 1);
+    EXPECT_EQ(next.status, expected.status) << name;
+    EXPECT_EQ(next.path, expected.path) << name;
+  }
 }
 
 // svmp.trees_before_build: a single query whose straight motion is blocked grows trees first and,

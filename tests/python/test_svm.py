@@ -3,6 +3,7 @@ matches finite differences, the truncated evaluator sums exactly the terms insid
 equals the C++ solver on the same data, and bad input raises ValueError naming the argument."""
 import os
 import subprocess
+from decimal import Decimal
 
 import numpy as np
 import pytest
@@ -109,6 +110,10 @@ def test_sigma_is_gamma_one_over_two_sigma_squared(two_rings):
     ({"eps": None}, "eps is None: expected a real number"),
     ({"max_iterations": 2**63}, r"max_iterations is 9223372036854775808: must be in \[1, 2\^63 - 1\]"),
     ({"max_iterations": 1e6}, "max_iterations is 1000000.0: expected an integer"),
+    ({"max_iterations": True}, "max_iterations is True: expected an integer"),
+    ({"gamma": 10**400}, "gamma is 1000.*: out of a double's range"),
+    ({"gamma": np.bool_(True)}, "gamma is .*True.*: expected a real number"),
+    ({"C": "2"}, "C is '2': give a positive number"),
 ])
 def test_bad_parameters_raise_value_error(two_rings, kwargs, message):
     X, y = two_rings
@@ -136,6 +141,16 @@ def test_bad_arrays_raise_value_error(two_rings, model):
         svmp.train(X, np.ones(len(X)))
     with pytest.raises(ValueError, match="X: expected real numbers, got an array of complex numbers"):
         svmp.train(X + 1j, y)
+
+
+def test_numbers_of_any_numeric_kind_are_arguments(two_rings):
+    X, y = two_rings
+    reference = svmp.train(X, y, C=2.0, gamma=0.5, eps=1e-3, max_iterations=100000)
+    for kwargs in ({"gamma": np.float32(0.5), "max_iterations": np.int64(100000)},
+                   {"gamma": np.array(0.5), "eps": np.array(1e-3), "max_iterations": np.array(100000)},
+                   {"gamma": Decimal("0.5"), "C": np.float64(2.0)}):
+        m = svmp.train(X, y, **{"C": 2.0, **kwargs})
+        np.testing.assert_array_equal(m.alpha, reference.alpha)
 
 
 def test_a_solve_stopped_by_its_iteration_limit_warns(two_rings):
