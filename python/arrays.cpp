@@ -15,8 +15,12 @@ bool looksLikeNoNumber(const py::handle& value) {
       PyComplex_Check(value.ptr()))
     return true;
   if (!py::hasattr(value, "dtype")) return false;
-  const char kind = py::dtype::from_args(value.attr("dtype")).kind();
-  return kind == 'b' || kind == 'c' || kind == 'U' || kind == 'S' || kind == 'O';
+  try {
+    const char kind = py::dtype::from_args(value.attr("dtype")).kind();
+    return kind == 'b' || kind == 'c' || kind == 'U' || kind == 'S' || kind == 'O';
+  } catch (const py::error_already_set&) {
+    return false;  // a `dtype` that is not NumPy's: its float() decides
+  }
 }
 
 [[noreturn]] void refuse(const py::handle& value, const std::string& name, const std::string& why) {

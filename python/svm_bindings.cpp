@@ -68,7 +68,8 @@ Model train(const py::object& X_in, const py::object& y_in, const py::object& C_
   for (Eigen::Index i = 0; i < y.size(); ++i)
     if (y[i] != 1 && y[i] != -1)
       throw py::value_error("y[" + std::to_string(i) + "] is " + numberText(y[i]) + ": labels must be +1 or -1");
-  if (C_in.is_none() || py::isinstance<py::str>(C_in) || py::isinstance<py::bytes>(C_in))
+  if (C_in.is_none() || py::isinstance<py::str>(C_in) || py::isinstance<py::bytes>(C_in) ||
+      py::isinstance<py::bool_>(C_in))
     throw py::value_error("C is " + py::repr(C_in).cast<std::string>() + ": give a positive number, or one per sample");
   Eigen::VectorXd C;
   const DoubleArray c = DoubleArray::ensure(C_in);

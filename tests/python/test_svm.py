@@ -114,6 +114,7 @@ def test_sigma_is_gamma_one_over_two_sigma_squared(two_rings):
     ({"gamma": 10**400}, "gamma is 1000.*: out of a double's range"),
     ({"gamma": np.bool_(True)}, "gamma is .*True.*: expected a real number"),
     ({"C": "2"}, "C is '2': give a positive number"),
+    ({"C": True}, "C is True: give a positive number"),
 ])
 def test_bad_parameters_raise_value_error(two_rings, kwargs, message):
     X, y = two_rings
