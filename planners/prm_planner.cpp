@@ -81,12 +81,10 @@ void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termina
   result.path = std::move(outcome.path);
   result.certified = outcome.certified;
   result.times.certify_ms += outcome.certify_ms;
-  result.status = result.path.empty() ? PlanStatus::kFailed : PlanStatus::kSolved;
-  if (!result.solved()) result.message = "start and goal are not connected by the roadmap";
-  if (!result.solved() && stop()) {  // a check the limit cut short is no proof of a disconnection
-    result.status = PlanStatus::kTimeout;
-    result.message = "time limit reached during the query";
-  }
+  // A check the limit cut short is no proof of a disconnection.
+  result.status = !result.path.empty() ? PlanStatus::kSolved : stop() ? PlanStatus::kTimeout : PlanStatus::kFailed;
+  if (result.status == PlanStatus::kTimeout) result.message = "time limit reached during the query";
+  if (result.status == PlanStatus::kFailed) result.message = "start and goal are not connected by the roadmap";
   result.milestones = roadmap_.numNodes();
   result.roadmap_edges = roadmap_.numEdges();
 }

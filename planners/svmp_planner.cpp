@@ -427,6 +427,13 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   std::optional<Roadmap> before_repair;  // restored when the query fails (below)
   bool full_trees_tried = false;         // joinByTrees of lazy_trees samples, once per query
   bool try_straight = !straight_motion_blocked_;
+  // A limit that has fired ends the query, saying after how many repair rounds.
+  const auto timedOut = [&](int round) {
+    if (!stop()) return false;
+    result.status = PlanStatus::kTimeout;
+    result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
+    return true;
+  };
   for (int round = 0;; ++round) {
     Roadmap& with_query = with_query_;
     with_query = roadmap_;
@@ -442,11 +449,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     }
     // A limit that fired during the search (its checks were cut short) ends the query before the
     // repairs below change the shared roadmap on the strength of them.
-    if (stop()) {
-      result.status = PlanStatus::kTimeout;
-      result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
-      break;
-    }
+    if (timedOut(round)) break;
     // A lazy roadmap that fails first tries the cheaper repairs first, each once per query and the
     // query run again as round 0 after each: trees of half the size (joinByTrees), the build's deferred
     // centred milestones linked lazily (often what a narrow passage needs: forest_200 checked 36% more
@@ -520,11 +523,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
       why += std::string(why.empty() ? "" : "; ") + "trees of " + std::to_string(first) + " to " +
              std::to_string(last) + " uniform samples did not join them";
     }
-    if (stop()) {
-      result.status = PlanStatus::kTimeout;
-      result.message = "time limit reached after " + std::to_string(round) + " repair rounds";
-      break;
-    }
+    if (timedOut(round)) break;
     if (!repaired) {
       if (!budget && options_.repair_rounds > 0) {
         const std::string stopped =
