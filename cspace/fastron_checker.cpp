@@ -6,6 +6,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "cspace/parallel_for.hpp"
+
 namespace svmp::cspace {
 namespace {
 
@@ -123,8 +125,7 @@ FastronLearnStats FastronChecker::learn(const ValidityChecker& exact, std::vecto
   std::vector<std::int8_t> labels(n);
   std::vector<float> feats(static_cast<size_t>(n) * dim_);
   auto t0 = Clock::now();
-#pragma omp parallel for num_threads(options_.threads) schedule(static)
-  for (int i = 0; i < n; ++i) labels[i] = exact.check(qs[i]) == kFree ? -1 : 1;
+  parallelFor(n, options_.threads, 64, [&](int i) { labels[i] = exact.check(qs[i]) == kFree ? -1 : 1; });
   stats.label_ms = msSince(t0);
   stats.labelled = n;
   t0 = Clock::now();

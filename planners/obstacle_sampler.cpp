@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 
+#include "cspace/parallel_for.hpp"
 #include "planners/nearest_neighbors.hpp"
 
 namespace svmp::planners {
@@ -257,9 +258,9 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
     targets.push_back(&self_collision);
   const std::vector<std::optional<Eigen::VectorXd>> roots = findRoots(checker, space, targets, options, seed);
   std::vector<Tree> trees(targets.size());
-#pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (int t = 0; t < static_cast<int>(targets.size()); ++t)
+  cspace::parallelFor(static_cast<int>(targets.size()), threads, 1, [&](int t) {
     trees[t] = growTree(checker, space, *targets[t], options, seed, roots[t]);
+  });
 
   ObstacleSamples samples;
   int total = 0;

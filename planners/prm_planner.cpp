@@ -2,6 +2,7 @@
 
 #include <atomic>
 
+#include "cspace/parallel_for.hpp"
 #include "planners/planner_registry.hpp"
 #include "planners/roadmap_builder.hpp"
 
@@ -50,11 +51,10 @@ void PrmPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanR
   }
   const int n = static_cast<int>(candidates.size());
   std::vector<char> free(n);
-#pragma omp parallel for schedule(static) num_threads(context_.threads)
-  for (int i = 0; i < n; ++i) {
-    if (stopped.load(std::memory_order_relaxed) || ((i & 63) == 0 && stop() && (stopped = true))) continue;
+  cspace::parallelFor(n, context_.threads, 64, [&](int i) {
+    if (stopped.load(std::memory_order_relaxed) || ((i & 63) == 0 && stop() && (stopped = true))) return;
     free[i] = context_.checker.isValid(candidates[i]);
-  }
+  });
   for (int i = 0; i < n && !stopped; ++i)
     if (free[i]) roadmap_.addNode(candidates[i]);
   result.times.sampling_ms += msSince(t0);

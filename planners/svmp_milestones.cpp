@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "cspace/parallel_for.hpp"
 #include "planners/svmp_planner.hpp"
 
 namespace svmp::planners {
@@ -21,13 +22,12 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
   std::vector<int> end_class(n);
   const DescentOptions descent = options_.descent();
   std::atomic<bool> stopped{false};
-#pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
-  for (int i = 0; i < n; ++i) {
-    if (stopped.load(std::memory_order_relaxed) || (stop() && (stopped = true))) continue;
+  cspace::parallelFor(n, context_.threads, 8, [&](int i) {
+    if (stopped.load(std::memory_order_relaxed) || (stop() && (stopped = true))) return;
     const int k = classes[i] >= 0 ? classes[i] : nearestBoundary(starts[i]);
     ends[i] = risk_->descend(k, starts[i], context_.space, descent).q;
     end_class[i] = k;
-  }
+  });
   if (stopped) return 0;
   // With keep_free_starts the starts themselves are candidates too (raw: no centring).
   std::vector<char> raw(n, 0);
@@ -46,17 +46,16 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
   for (int i = 0; i < n; ++i)
     if (kept.addUnlessNear(ends[i])) fresh.push_back(i);
   std::vector<char> valid(fresh.size());
-#pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
-  for (int f = 0; f < static_cast<int>(fresh.size()); ++f) {
+  cspace::parallelFor(static_cast<int>(fresh.size()), context_.threads, 8, [&](int f) {
     valid[f] = context_.checker.isValid(ends[fresh[f]]);
-    if (valid[f] || raw[fresh[f]] || defer_centring) continue;
+    if (valid[f] || raw[fresh[f]] || defer_centring) return;
     std::optional<Eigen::VectorXd> centre;
     if (options_.centre_in_passage) centre = centreAlongNormal(end_class[fresh[f]], ends[fresh[f]]);
     if (centre) {
       ends[fresh[f]] = *centre;
       valid[f] = 1;
     }
-  }
+  });
   int added = 0;
   for (size_t f = 0; f < fresh.size(); ++f) {
     if (valid[f])
@@ -70,8 +69,8 @@ int SvmpPlanner::addMilestones(const std::vector<Eigen::VectorXd>& starts, const
 int SvmpPlanner::centreDeferred() {
   const int n = static_cast<int>(uncentred_.size());
   std::vector<std::optional<Eigen::VectorXd>> centres(n);
-#pragma omp parallel for schedule(dynamic, 8) num_threads(context_.threads)
-  for (int i = 0; i < n; ++i) centres[i] = centreAlongNormal(uncentred_[i].second, uncentred_[i].first);
+  cspace::parallelFor(n, context_.threads, 8,
+                      [&](int i) { centres[i] = centreAlongNormal(uncentred_[i].second, uncentred_[i].first); });
   uncentred_.clear();
   int added = 0;
   for (const auto& c : centres)

@@ -258,6 +258,29 @@ TEST(OmplPlanners, AUsersCheckerIsUsedByThePrm) {
   }
 }
 
+// A review's finding: the PRM tests its samples in an OpenMP loop, and an exception leaving one ends
+// the program. A user's checker that throws now reaches solve()'s error report instead.
+class ThrowingChecker final : public ob::StateValidityChecker {
+ public:
+  using ob::StateValidityChecker::StateValidityChecker;
+  bool isValid(const ob::State* s) const override {
+    if (s->as<ob::RealVectorStateSpace::StateType>()->values[0] > 0.9) throw std::runtime_error("no map there");
+    return true;
+  }
+};
+
+TEST(OmplPlanners, AUsersCheckerThatThrowsIsAnErrorNotAnEnd) {
+  std::shared_ptr<DiscChecker> unused;
+  auto setup = discSetup(unused);
+  setup->setStateValidityChecker(std::make_shared<ThrowingChecker>(setup->getSpaceInformation()));
+  auto prm = std::make_shared<PrmOmplPlanner>(setup->getSpaceInformation());
+  prm->setSeed(3);
+  setup->setPlanner(prm);
+  EXPECT_EQ(setup->solve(10.0), ob::PlannerStatus::ABORT);
+  EXPECT_EQ(prm->lastResult().status, planners::PlanStatus::kInvalidInput);
+  EXPECT_EQ(prm->lastResult().message, "no map there");
+}
+
 // A probe's finding: states were kept within the bounds on the way in, so a start at (-3, 0.5) gave an
 // "exact" path from (0, 0.5). OMPL's own planners skip such a start; ours now refuse it, and a goal so.
 TEST(OmplPlanners, AStartOrGoalBeyondTheBoundsIsInvalid) {
