@@ -6,6 +6,7 @@
 #include <ompl/util/Console.h>
 
 #include <limits>
+#include <map>
 #include <mutex>
 #include <tuple>
 
@@ -220,23 +221,28 @@ void SvmOmplPlannerBase::getPlannerData(ob::PlannerData& data) const {
     toState(q, scale, states.back());
     return ob::PlannerDataVertex(states.back());
   };
-  const planners::Roadmap* roadmap = planner_ ? planner_->view().roadmap : nullptr;
-  if (roadmap) {
+  // A configuration's vertex, so that the last path runs through the roadmap's own vertices.
+  std::map<std::vector<double>, unsigned int> vertex_at;
+  auto vertexOf = [&](const Eigen::VectorXd& q) {
+    auto [it, fresh] = vertex_at.try_emplace(std::vector<double>(q.data(), q.data() + q.size()), 0u);
+    if (fresh) it->second = data.addVertex(vertex(q));
+    return it->second;
+  };
+  if (const planners::Roadmap* roadmap = planner_ ? planner_->view().roadmap : nullptr) {
     std::vector<unsigned int> index(roadmap->numNodes());
-    for (int i = 0; i < roadmap->numNodes(); ++i) index[i] = data.addVertex(vertex(roadmap->node(i)));
+    for (int i = 0; i < roadmap->numNodes(); ++i) index[i] = vertexOf(roadmap->node(i));
     // Lazy edges no query has checked yet are candidates, not roadmap edges.
     for (int i = 0; i < roadmap->numNodes(); ++i)
       for (const planners::Edge& e : roadmap->neighbours(i))
         if (i < e.to && e.checked) data.addEdge(index[i], index[e.to], ob::PlannerDataEdge(), ob::Cost(e.cost));
-  } else if (last_.path.size() >= 2) {
-    unsigned int previous = data.addStartVertex(vertex(last_.path.front()));
-    for (size_t i = 1; i < last_.path.size(); ++i) {
-      const unsigned int next = i + 1 < last_.path.size() ? data.addVertex(vertex(last_.path[i]))
-                                                          : data.addGoalVertex(vertex(last_.path[i]));
-      data.addEdge(previous, next, ob::PlannerDataEdge(),
+  }
+  // The last query's path, its ends marked start and goal as OMPL's own planners mark theirs.
+  if (last_.path.size() >= 2) {
+    for (size_t i = 1; i < last_.path.size(); ++i)
+      data.addEdge(vertexOf(last_.path[i - 1]), vertexOf(last_.path[i]), ob::PlannerDataEdge(),
                    ob::Cost(context_->space.distance(last_.path[i - 1], last_.path[i])));
-      previous = next;
-    }
+    data.markStartState(data.getVertex(vertexOf(last_.path.front())).getState());
+    data.markGoalState(data.getVertex(vertexOf(last_.path.back())).getState());
   }
   data.decoupleFromPlanner();  // the data owns copies of the states; ours go
   for (ob::State* s : states) si_->freeState(s);

@@ -1,7 +1,7 @@
 // Our planners as OMPL planners (planners/ompl/svm_planners.hpp): each solves through SimpleSetup on
 // our checker with a path an independent checker re-checks densely; an expired termination condition
 // stops them at once; the local planner's stalled descent is an approximate solution; getPlannerData
-// is the roadmap; the ParamSet lists the options' fields and setting one changes the options (bad
+// is the roadmap and the path, its ends marked; the ParamSet lists the options' fields and setting one changes the options (bad
 // values refused); a user's StateValidityChecker is used by the PRM and refused, with a reason, by SVMP.
 #include <gtest/gtest.h>
 
@@ -95,29 +95,53 @@ TEST(OmplPlanners, AnExpiredConditionStopsThemAtOnce) {
   }
 }
 
-TEST(OmplPlanners, PlannerDataIsTheRoadmapOrThePath) {
+TEST(OmplPlanners, PlannerDataIsTheRoadmapAndThePathWithItsEndsMarked) {
   for (const Case& c : kCases) {
     OmplRun run(c.scenario, c.planner);
     run.ours().setSeed(1);
     ASSERT_EQ(run.setup->solve(30.0), ob::PlannerStatus::EXACT_SOLUTION) << c.planner;
     ob::PlannerData data(run.setup->getSpaceInformation());
     run.planner->getPlannerData(data);
+    const std::vector<Eigen::VectorXd>& path = run.ours().lastResult().path;
     const planners::Roadmap* roadmap = run.ours().planner()->view().roadmap;
+    // The path's waypoints that are not roadmap nodes are the vertices beyond the roadmap's.
+    unsigned beyond = 0, checked = 0;
+    for (const Eigen::VectorXd& q : path) {
+      bool in_roadmap = false;
+      for (int i = 0; roadmap && i < roadmap->numNodes() && !in_roadmap; ++i) in_roadmap = roadmap->node(i) == q;
+      beyond += !in_roadmap;
+    }
     if (std::string(c.planner) == "svmp" || std::string(c.planner) == "prm") {
       ASSERT_NE(roadmap, nullptr) << c.planner;
-      EXPECT_EQ(data.numVertices(), static_cast<unsigned>(roadmap->numNodes())) << c.planner;
+      EXPECT_GT(roadmap->numNodes(), 10) << c.planner;
+      EXPECT_LT(beyond, path.size()) << c.planner;  // the path runs through the roadmap
       // The checked edges (svmp's lazy edges that no query checked are candidates, not the roadmap's).
-      unsigned checked = 0;
       for (int i = 0; i < roadmap->numNodes(); ++i)
         for (const planners::Edge& e : roadmap->neighbours(i)) checked += i < e.to && e.checked;
-      EXPECT_EQ(data.numEdges(), checked) << c.planner;
       EXPECT_GT(checked, 0u) << c.planner;
-      EXPECT_GT(roadmap->numNodes(), 10) << c.planner;
     } else {
-      EXPECT_EQ(data.numVertices(), run.setup->getSolutionPath().getStateCount()) << c.planner;
-      EXPECT_EQ(data.numStartVertices(), 1u);
-      EXPECT_EQ(data.numGoalVertices(), 1u);
+      EXPECT_EQ(roadmap, nullptr) << c.planner;
     }
+    EXPECT_EQ(data.numVertices(), (roadmap ? roadmap->numNodes() : 0) + beyond) << c.planner;
+    EXPECT_GE(data.numEdges(), checked) << c.planner;
+    EXPECT_LE(data.numEdges(), checked + path.size() - 1) << c.planner;
+    ASSERT_EQ(data.numStartVertices(), 1u) << c.planner;
+    ASSERT_EQ(data.numGoalVertices(), 1u) << c.planner;
+    const ob::SpaceInformationPtr& si = run.setup->getSpaceInformation();
+    EXPECT_TRUE(si->equalStates(data.getStartVertex(0).getState(), run.setup->getSolutionPath().getState(0)));
+    EXPECT_TRUE(si->equalStates(data.getGoalVertex(0).getState(),
+                                run.setup->getSolutionPath().getStates().back())) << c.planner;
+    // Start and goal are joined in the data along the path.
+    std::vector<unsigned int> reached{data.getStartIndex(0)};
+    std::vector<char> seen(data.numVertices(), 0);
+    seen[reached[0]] = 1;
+    for (size_t k = 0; k < reached.size(); ++k) {
+      std::vector<unsigned int> next;
+      data.getEdges(reached[k], next);
+      for (unsigned int v : next)
+        if (!seen[v]) seen[v] = 1, reached.push_back(v);
+    }
+    EXPECT_TRUE(seen[data.getGoalIndex(0)]) << c.planner;
   }
 }
 
