@@ -231,16 +231,20 @@ void SvmOmplPlannerBase::getPlannerData(ob::PlannerData& data) const {
   if (const planners::Roadmap* roadmap = planner_ ? planner_->view().roadmap : nullptr) {
     std::vector<unsigned int> index(roadmap->numNodes());
     for (int i = 0; i < roadmap->numNodes(); ++i) index[i] = vertexOf(roadmap->node(i));
-    // Lazy edges no query has checked yet are candidates, not roadmap edges.
+    // Lazy edges no query has checked yet are candidates, not roadmap edges. Both ways, as OMPL's PRM
+    // gives its undirected roadmap.
     for (int i = 0; i < roadmap->numNodes(); ++i)
       for (const planners::Edge& e : roadmap->neighbours(i))
-        if (i < e.to && e.checked) data.addEdge(index[i], index[e.to], ob::PlannerDataEdge(), ob::Cost(e.cost));
+        if (e.checked) data.addEdge(index[i], index[e.to], ob::PlannerDataEdge(), ob::Cost(e.cost));
   }
-  // The last query's path, its ends marked start and goal as OMPL's own planners mark theirs.
-  if (last_.path.size() >= 2) {
+  // The path solve() gave OMPL (exact, or a local minimum's approximate one), its ends marked start
+  // and goal as OMPL's own planners mark theirs.
+  const bool given = last_.solved() || last_.status == planners::PlanStatus::kLocalMinimum;
+  if (given && last_.path.size() >= 2) {
     for (size_t i = 1; i < last_.path.size(); ++i)
-      data.addEdge(vertexOf(last_.path[i - 1]), vertexOf(last_.path[i]), ob::PlannerDataEdge(),
-                   ob::Cost(context_->space.distance(last_.path[i - 1], last_.path[i])));
+      if (const unsigned int a = vertexOf(last_.path[i - 1]), b = vertexOf(last_.path[i]); a != b)
+        data.addEdge(a, b, ob::PlannerDataEdge(),
+                     ob::Cost(context_->space.distance(last_.path[i - 1], last_.path[i])));
     data.markStartState(data.getVertex(vertexOf(last_.path.front())).getState());
     data.markGoalState(data.getVertex(vertexOf(last_.path.back())).getState());
   }

@@ -1,8 +1,9 @@
 // Our planners as OMPL planners (planners/ompl/svm_planners.hpp): each solves through SimpleSetup on
 // our checker with a path an independent checker re-checks densely; an expired termination condition
 // stops them at once; the local planner's stalled descent is an approximate solution; getPlannerData
-// is the roadmap and the path, its ends marked; the ParamSet lists the options' fields and setting one changes the options (bad
-// values refused); a user's StateValidityChecker is used by the PRM and refused, with a reason, by SVMP.
+// is the roadmap and the path, its ends marked; the ParamSet lists the options' fields and setting one
+// changes the options (bad values refused); a user's StateValidityChecker is used by the PRM (and one
+// that throws is an error) and refused, with a reason, by SVMP.
 #include <gtest/gtest.h>
 
 #include <ompl/base/DiscreteMotionValidator.h>
@@ -10,6 +11,7 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <fstream>
@@ -104,20 +106,21 @@ TEST(OmplPlanners, PlannerDataIsTheRoadmapAndThePathWithItsEndsMarked) {
     run.planner->getPlannerData(data);
     const std::vector<Eigen::VectorXd>& path = run.ours().lastResult().path;
     const planners::Roadmap* roadmap = run.ours().planner()->view().roadmap;
-    // The path's waypoints that are not roadmap nodes are the vertices beyond the roadmap's.
+    // The path's distinct waypoints that are not roadmap nodes are the vertices beyond the roadmap's.
     unsigned beyond = 0, checked = 0;
-    for (const Eigen::VectorXd& q : path) {
-      bool in_roadmap = false;
-      for (int i = 0; roadmap && i < roadmap->numNodes() && !in_roadmap; ++i) in_roadmap = roadmap->node(i) == q;
-      beyond += !in_roadmap;
+    for (size_t k = 0; k < path.size(); ++k) {
+      bool known = std::find(path.begin(), path.begin() + k, path[k]) != path.begin() + k;
+      for (int i = 0; roadmap && i < roadmap->numNodes() && !known; ++i) known = roadmap->node(i) == path[k];
+      beyond += !known;
     }
     if (std::string(c.planner) == "svmp" || std::string(c.planner) == "prm") {
       ASSERT_NE(roadmap, nullptr) << c.planner;
       EXPECT_GT(roadmap->numNodes(), 10) << c.planner;
       EXPECT_LT(beyond, path.size()) << c.planner;  // the path runs through the roadmap
-      // The checked edges (svmp's lazy edges that no query checked are candidates, not the roadmap's).
+      // The checked edges, both ways (svmp's lazy edges that no query checked are candidates, not the
+      // roadmap's).
       for (int i = 0; i < roadmap->numNodes(); ++i)
-        for (const planners::Edge& e : roadmap->neighbours(i)) checked += i < e.to && e.checked;
+        for (const planners::Edge& e : roadmap->neighbours(i)) checked += e.checked;
       EXPECT_GT(checked, 0u) << c.planner;
     } else {
       EXPECT_EQ(roadmap, nullptr) << c.planner;
