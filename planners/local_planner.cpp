@@ -128,10 +128,12 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, const Termination& 
     const Eigen::VectorXd q_next = next.cwiseQuotient(scale);
     if (const int hit = context_.checker.check(q_next);
         hit != cspace::kFree || !context_.validator.isValid(q_prev, q_next)) {
+      Eigen::VectorXd g_next(x.size());
       std::ostringstream where;
       where << (hit != cspace::kFree ? "a descent step ended " + cspace::describeHit(context_.checker.environment(), hit)
                                      : std::string("a descent step crossed an obstacle between two free configurations"))
-            << " at [" << q_next.transpose() << "], F = " << f;
+            << " at [" << q_next.transpose() << "], F = " << decision(next, g_next) << " there (" << f
+            << " at the step's start)";
       result.message = where.str();
       return PlanStatus::kFailed;
     }

@@ -63,6 +63,22 @@ double guideSampleBound(const cspace::ConfigurationSpace& space, double spacing,
   return 2 * (diagonal / spacing + 2) * across;
 }
 
+// How the patterns tried ended, counted ("left the space: 3, stopped at max_steps (542): 1"): a user
+// reads which limit to raise.
+std::string howThePatternsEnded(const std::vector<SvppTrial>& trials, int max_steps) {
+  std::map<std::string, int> reasons;
+  for (const SvppTrial& t : trials)
+    ++reasons[t.follow.reached() ? (t.valid ? "reached the goal but not certified"
+                                            : "reached the goal through an obstacle")
+              : t.follow.status == FollowStatus::kStepLimit
+                  ? "stopped at max_steps (" + std::to_string(max_steps) + ")"
+                  : followStatusName(t.follow.status)];
+  std::ostringstream out;
+  for (auto it = reasons.begin(); it != reasons.end(); ++it)
+    out << (it == reasons.begin() ? "" : ", ") << it->first << ": " << it->second;
+  return out.str();
+}
+
 }  // namespace
 
 std::string SvppOptions::validateFor(const cspace::ConfigurationSpace& space) const {
@@ -319,30 +335,20 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
                     Eigen::VectorXd::Ones(dim), false);
     return;
   }
-  if (result.status == PlanStatus::kTimeout) return;
-  if (stop()) {
+  // Why each pattern failed, and why no more were tried.
+  const int max_steps = options_.following(query, context_.space.lower(), context_.space.upper()).max_steps;
+  const std::string tally = howThePatternsEnded(trace_.trials, max_steps);
+  if (result.status == PlanStatus::kTimeout && result.message != cut_short) return;  // the certifier's own
+  if (result.status == PlanStatus::kTimeout || stop()) {
     result.status = PlanStatus::kTimeout;
-    result.message = "time limit reached after " + std::to_string(trace_.trials.size()) + " patterns";
+    result.message =
+        "time limit reached after " + std::to_string(trace_.trials.size()) + " patterns (" + tally + ")";
     result.path.clear();
     return;
   }
-  // Why each pattern failed, and why no more were tried: a user reads which limit to raise.
-  const int max_steps = options_.following(query, context_.space.lower(), context_.space.upper()).max_steps;
-  std::map<std::string, int> reasons;
-  for (const SvppTrial& t : trace_.trials)
-    ++reasons[t.follow.reached() ? (t.valid ? "reached the goal but not certified"
-                                            : "reached the goal through an obstacle")
-              : t.follow.status == FollowStatus::kStepLimit
-                  ? "stopped at max_steps (" + std::to_string(max_steps) + ")"
-                  : followStatusName(t.follow.status)];
-  std::ostringstream why;
-  why << "no path in " << trace_.trials.size() << " labelling patterns of " << obstacles
-      << " merged obstacles (" << ended << "; ";
-  for (auto it = reasons.begin(); it != reasons.end(); ++it)
-    why << (it == reasons.begin() ? "" : ", ") << it->first << ": " << it->second;
-  why << ")";
   result.status = PlanStatus::kFailed;
-  result.message = why.str();
+  result.message = "no path in " + std::to_string(trace_.trials.size()) + " labelling patterns of " +
+                   std::to_string(obstacles) + " merged obstacles (" + ended + "; " + tally + ")";
   result.path.clear();
 }
 
