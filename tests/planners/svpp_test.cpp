@@ -355,6 +355,12 @@ TEST(SvppTest, TheTimeLimitStopsASurfaceFollowing) {
   const auto& trials = dynamic_cast<const SvppPlanner&>(*planner).trace().trials;
   ASSERT_FALSE(trials.empty());
   EXPECT_EQ(trials.back().follow.status, FollowStatus::kStopped);
+  // The message counts how the patterns ended, as a failure's does (a probe's 31 merged obstacles
+  // timed out saying only how many patterns it had tried).
+  EXPECT_NE(r.message.find("time limit reached after " + std::to_string(trials.size()) + " patterns ("),
+            std::string::npos) << r.message;
+  EXPECT_NE(r.message.find(std::string(followStatusName(FollowStatus::kStopped)) + ": 1)"), std::string::npos)
+      << r.message;
 }
 
 TEST(SvppTest, ATimeLimitAfterAPathReturnsItWithAWarning) {
