@@ -341,8 +341,8 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   if (result.status == PlanStatus::kTimeout && result.message != cut_short) return;  // the certifier's own
   if (result.status == PlanStatus::kTimeout || stop()) {
     result.status = PlanStatus::kTimeout;
-    result.message =
-        "time limit reached after " + std::to_string(trace_.trials.size()) + " patterns (" + tally + ")";
+    result.message = "time limit reached after " + std::to_string(trace_.trials.size()) + " patterns" +
+                     (tally.empty() ? "" : " (" + tally + ")");
     result.path.clear();
     return;
   }
