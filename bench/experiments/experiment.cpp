@@ -325,8 +325,10 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
             // --time-limit bounds the smoothing of each path as it bounds each solve.
             auto smoothed = planners::smoothPathBySvm(record.result.path, world.checker, world.certifier,
                                                       world.space, smoothing_options, &smoothing, limit().asFunction());
-            if (!smoothed.smoothed)
+            if (!smoothed.smoothed) {  // said in the record too: a reader of the JSON sees which paths are smoothed
               log << "  " << runs.planner << " seed " << seed << ": path kept (" << smoothed.why << ")\n";
+              record.result.warnings.push_back("--simplify svpp kept the path as planned: " + smoothed.why);
+            }
             record.result.path = std::move(smoothed.path);
           } else {
             cspace::Rng rng(seed ^ 0x5157A9E1ULL);
