@@ -319,13 +319,14 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
           if (planner.built()) planners::addBuild(build, record.result);
         }
         record.raw_length = planners::pathLength(record.result.path, world.space);
+        const size_t planner_warnings = record.result.warnings.size();  // the smoothing's come after
         if (options.simplify && record.result.solved()) {
           const auto t1 = Clock::now();
           if (options.simplify_svm) {
             // --time-limit bounds the smoothing of each path as it bounds each solve.
             auto smoothed = planners::smoothPathBySvm(record.result.path, world.checker, world.certifier,
                                                       world.space, smoothing_options, &smoothing, limit().asFunction());
-            if (!smoothed.smoothed) {  // said in the record too: a reader of the JSON sees which paths are smoothed
+            if (!smoothed.smoothed) {  // in the JSON record too, which then says which paths are smoothed
               log << "  " << runs.planner << " seed " << seed << ": path kept (" << smoothed.why << ")\n";
               record.result.warnings.push_back("--simplify svpp kept the path as planned: " + smoothed.why);
             }
@@ -343,8 +344,9 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
               << ": " << planners::planStatusName(record.result.status) << ", " << record.result.collision_checks
               << " checks, " << std::fixed << std::setprecision(1) << record.time_ms << " ms"
               << (record.result.message.empty() ? "" : " (" + record.result.message + ")") << "\n";
-        if (r == 0 && i == 0)  // the same scenario gives every run the same warnings
-          for (const std::string& w : record.result.warnings) log << "  " << runs.planner << " warning: " << w << "\n";
+        if (r == 0 && i == 0)  // the same scenario gives every run the same warnings (the smoothing's: logged above)
+          for (size_t w = 0; w < planner_warnings; ++w)
+            log << "  " << runs.planner << " warning: " << record.result.warnings[w] << "\n";
         runs.runs.push_back(std::move(record));
       }
     }

@@ -149,6 +149,7 @@ TEST(DriverOutput, APathTheSvmSmoothingKeepsSaysSoInItsRecord) {
   ASSERT_EQ(r.result.warnings.size(), 1u) << log.str();
   EXPECT_EQ(r.result.warnings[0].rfind("--simplify svpp kept the path as planned: ", 0), 0u) << r.result.warnings[0];
   EXPECT_NE(log.str().find("path kept ("), std::string::npos) << log.str();
+  EXPECT_EQ(log.str().find("warning: --simplify svpp"), std::string::npos) << "said twice:\n" << log.str();
 }
 
 // With no obstacle at all every clearance is infinite, which JSON cannot hold: the statistics say
