@@ -335,10 +335,10 @@ void SvppPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
                     Eigen::VectorXd::Ones(dim), false);
     return;
   }
+  if (result.status == PlanStatus::kTimeout && result.message != cut_short) return;  // the certifier's own
   // Why each pattern failed, and why no more were tried.
   const int max_steps = options_.following(query, context_.space.lower(), context_.space.upper()).max_steps;
   const std::string tally = howThePatternsEnded(trace_.trials, max_steps);
-  if (result.status == PlanStatus::kTimeout && result.message != cut_short) return;  // the certifier's own
   if (result.status == PlanStatus::kTimeout || stop()) {
     result.status = PlanStatus::kTimeout;
     result.message = "time limit reached after " + std::to_string(trace_.trials.size()) + " patterns" +
