@@ -11,6 +11,7 @@
 //
 // Thread safety: a planner is used by one thread at a time; it may use context.threads OpenMP threads
 // inside a call, never sharing mutable FCL objects, generators or scratch buffers between them.
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -77,6 +78,9 @@ class Planner {
 
   virtual PlannerView view() const { return {}; }
   bool built() const { return built_; }
+  // The values a planner derived from the problem for parameters the file left unset (name -> value
+  // as text: svmp's sigma and step, svpp's lengths), so a result file records what ran.
+  virtual std::map<std::string, std::string> derivedParameters() const { return {}; }
 
  protected:
   // The planner's steps; the base class counts checks and calls around them and checks the query's

@@ -165,6 +165,15 @@ int SvmpPlanner::supportVectors() const {
 
 PlannerView SvmpPlanner::view() const { return {&samples_, risk(), &roadmap_}; }
 
+std::map<std::string, std::string> SvmpPlanner::derivedParameters() const {
+  using cspace::parameterText;
+  return {{"sigma", parameterText(options_.sigma)},
+          {"step", parameterText(options_.step)},
+          {"samples_per_tree", std::to_string(options_.samples_per_tree)},
+          {"tree_range", parameterText(options_.tree_range)},
+          {"duplicate_radius", parameterText(options_.duplicate_radius)}};
+}
+
 bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Termination& stop) {
   const auto t0 = Clock::now();
   planners::ObstacleSamplerOptions opt;

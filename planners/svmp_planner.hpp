@@ -135,6 +135,7 @@ class SvmpPlanner final : public Planner {
   std::string name() const override { return "svmp"; }
   void clear() override;
   PlannerView view() const override;
+  std::map<std::string, std::string> derivedParameters() const override;
 
   // The steps of build(), callable one by one; each adds its time to `times`. Out of order they throw
   // std::logic_error. sampleObstacle returns false when `stop` ended it; trainMultiSvm returns "" or

@@ -188,6 +188,15 @@ PlannerView SvppPlanner::view() const {
   return v;
 }
 
+std::map<std::string, std::string> SvppPlanner::derivedParameters() const {
+  using cspace::parameterText;
+  const SvppOptions& o = options_;
+  return {{"virtual_distance", parameterText(o.virtual_distance)}, {"guide_distance", parameterText(o.guide_distance)},
+          {"guide_spacing", parameterText(o.guide_spacing)},       {"step", parameterText(o.step)},
+          {"gamma", parameterText(o.gamma)},
+          {"patterns", std::to_string(o.patternsFor(context_.space.dim()))}};
+}
+
 void SvppPlanner::buildRoadmap(std::uint64_t, const Termination& stop, PlanResult& result) {
   const auto t0 = Clock::now();
   const auto* point = dynamic_cast<const robots::PointRobot*>(&context_.checker.robot());

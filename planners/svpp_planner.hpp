@@ -112,6 +112,7 @@ class SvppPlanner final : public Planner {
   void clear() override;
   void clearQuery() override;
   PlannerView view() const override;
+  std::map<std::string, std::string> derivedParameters() const override;
 
   const std::vector<SvppObstacle>& obstacles() const { return obstacles_; }
   const SvppTrace& trace() const { return trace_; }

@@ -31,10 +31,17 @@ const char* driverUsage() {
   return "usage: svmp-plan --scenario FILE [--planners LIST] [--runs N] [--seed S] [--threads T]\n"
          "                 [--json FILE] [--svg DIR] [--paths FILE] [--path-dir DIR] [--simplify [svpp]]\n"
          "                 [--set PLANNER.KEY=VALUE ...] [--time-limit SEC] [--checker NAME] [--queries N]\n"
-         "                 [--ompl-log FILE] [--check]\n"
-         "  --planners  comma-separated: svmp, prm, local, svpp, ompl-prm, ompl-lazyprm, ompl-rrtconnect,\n"
-         "              ompl-rrt, ompl-sbl, ompl-rrtstar, ompl-fmt, ompl-informedrrtstar\n"
-         "  --runs      runs per planner, seeds S, S+1, ... (default 1)\n"
+         "                 [--ompl-log FILE] [--check] [--version]\n"
+         "  --planners  comma-separated (default svmp,prm): svmp, prm, local, svpp, ompl-prm, ompl-lazyprm,\n"
+         "              ompl-rrtconnect, ompl-rrt, ompl-sbl, ompl-rrtstar, ompl-fmt, ompl-informedrrtstar\n"
+         "  --runs      runs per planner, seeds S, S+1, ... (default 1); --seed S: the first (default 1)\n"
+         "  --threads   OpenMP threads of each run (default 1); the same seed and threads give the same result\n"
+         "  --set       a planner parameter over the file's (planners.PLANNER.KEY); the planner must be in\n"
+         "              --planners, fastron-*.KEY needs that --checker, svpp.KEY goes with --simplify svpp\n"
+         "  --json      the table's statistics, every run's record, each planner's parameters (as set,\n"
+         "              defaulted or derived) and what produced them (version, revision, host, CPU)\n"
+         "  --svg       SVG pictures of each planner's first run: the C-space (2 dof), the workspace (planar\n"
+         "              robots), svpp's patterns\n"
          "  --time-limit  seconds per run (with several queries: for the build and for each query); a planner\n"
          "              that reaches it reports status timeout\n"
          "  --paths     JSON of every run's certified path (waypoints); --path-dir: one OMPL matrix\n"
@@ -117,6 +124,7 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
       if (o.merge_files.empty()) throw std::invalid_argument("flag --merge: expected shard JSON files");
     } else if (flag == "--check") o.check = true;
     else if (flag == "--help" || flag == "-h") o.help = true;
+    else if (flag == "--version") o.version = true;
     else throw std::invalid_argument("unknown flag '" + flag + "'");
   }
   if (!o.merge_files.empty())
@@ -125,7 +133,7 @@ DriverOptions parseDriverOptions(int argc, const char* const* argv) {
       if (flag.rfind("--", 0) == 0 && flag != "--merge" && flag != "--json" && flag != "--scenario")
         throw std::invalid_argument("flag " + flag + ": not used with --merge (the shards' JSON says how they ran)");
     }
-  if (!o.help && o.scenario.empty() && o.merge_files.empty())
+  if (!o.help && !o.version && o.scenario.empty() && o.merge_files.empty())
     throw std::invalid_argument("flag --scenario is required");
   for (const auto& [flag, path] : {std::pair{"--json", &o.json_path}, std::pair{"--paths", &o.paths_json},
                                    std::pair{"--svg", &o.svg_dir}, std::pair{"--path-dir", &o.paths_dir},

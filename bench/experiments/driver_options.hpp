@@ -31,6 +31,7 @@ struct DriverOptions {
   std::vector<std::pair<std::string, std::string>> overrides;  // ("svmp.sigma", "0.3")
   bool check = false;
   bool help = false;
+  bool version = false;  // --version: the version and git revision this binary was built from
   // --merge FILE...: no runs; merge shard JSONs of one sweep into the single run's table and --json
   // (bench/experiments/run_records.hpp). Only --json and --scenario go with it.
   std::vector<std::string> merge_files;

@@ -170,6 +170,7 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
     std::map<std::string, std::string>& values = parameters->emplace_back();
     for (const auto& [key, declaration] : params.declarations())
       values[key] = params.has(key) ? params.values().at(key) : declaration.fallback;
+    for (const auto& [key, value] : planners.back()->derivedParameters()) values[key] = value;
   }
   return planners;
 }
@@ -410,9 +411,12 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
 }
 
 void writeJson(const std::string& file, const cspace::Scenario& scenario, const DriverOptions& options,
-               const std::vector<PlannerRuns>& results) {
+               const std::vector<PlannerRuns>& results, const Provenance& provenance) {
   std::ostringstream o;
-  o << "{ \"scenario\": " << jsonString(scenario.name) << ", \"file\": " << jsonString(scenario.path)
+  o << "{ \"version\": " << jsonString(provenance.version) << ", \"revision\": " << jsonString(provenance.revision)
+    << ", \"started\": " << jsonString(provenance.started) << ", \"host\": " << jsonString(provenance.host)
+    << ", \"cpu\": " << jsonString(provenance.cpu) << ", \"simd\": " << jsonString(provenance.simd) << ",\n  "
+    << "\"scenario\": " << jsonString(scenario.name) << ", \"file\": " << jsonString(scenario.path)
     << ", \"dof\": " << scenario.robot->dof() << ", \"runs\": " << options.runs
     << ", \"queries\": " << scenario.queries.size() << ", \"seed\": " << options.seed
     << ", \"threads\": " << options.threads << ", \"time_limit\": " << options.time_limit
@@ -427,6 +431,10 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
     auto solved_field = [&](auto f) { return jsonStats(collect(runs, true, f)); };
     o << "    { \"planner\": " << jsonString(runs.planner) << ", \"solved\": " << runs.solved()
       << ", \"success_rate\": " << runs.solved() / n << ", \"certified\": " << runs.certified()
+      << ",\n      \"parameters\": {";
+    for (auto it = runs.parameters.begin(); it != runs.parameters.end(); ++it)
+      o << (it == runs.parameters.begin() ? "" : ", ") << jsonString(it->first) << ": " << jsonString(it->second);
+    o << "}"
       << ",\n      \"collision_checks\": " << field([](const RunRecord& r) { return double(r.result.collision_checks); })
       << ",\n      \"local_planner_calls\": " << field([](const RunRecord& r) { return double(r.result.local_planner_calls); })
       << ",\n      \"distance_queries\": " << field([](const RunRecord& r) { return double(r.result.distance_queries); })

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bench/experiments/driver_options.hpp"
+#include "bench/experiments/provenance.hpp"
 #include "cspace/scenario/scenario.hpp"
 #include "planners/plan_result.hpp"
 
@@ -32,7 +33,9 @@ struct RunRecord {
 struct PlannerRuns {
   std::string planner;
   std::vector<RunRecord> runs;
-  std::map<std::string, std::string> parameters;  // every parameter the planner read: its value, set or default
+  // Every parameter the planner read (its value, set or default) and those it derived from the
+  // problem where the file left them unset (Planner::derivedParameters).
+  std::map<std::string, std::string> parameters;
   int solved() const;     // solved, which with the driver's certifier means certified
   int certified() const;
 };
@@ -52,8 +55,9 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
 void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
                 const std::vector<PlannerRuns>& results, std::ostream& out);
 // Written whole or not at all (temporary file, then rename). Throws std::runtime_error on failure.
+// `provenance`: what produced the runs (the code's revision, the machine, when they started).
 void writeJson(const std::string& file, const cspace::Scenario& scenario, const DriverOptions& options,
-               const std::vector<PlannerRuns>& results);
+               const std::vector<PlannerRuns>& results, const Provenance& provenance = Provenance::now());
 // --paths: per planner and run, the status, seed, query and the path's waypoints (JSON, whole or not at all).
 void writePathsJson(const std::string& file, const cspace::Scenario& scenario,
                     const std::vector<PlannerRuns>& results);

@@ -1,14 +1,11 @@
 #include "bench/experiments/ompl_log.hpp"
 
 #include <cmath>
-#include <ctime>
-#include <fstream>
 #include <map>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "bench/experiments/atomic_file.hpp"
+#include "bench/experiments/provenance.hpp"
 #include "cspace/scenario/parameters.hpp"
 #include "planners/ompl/state_bridge.hpp"
 
@@ -20,25 +17,6 @@ namespace ob = ::ompl::base;
 std::string real(double v) { return cspace::parameterText(v); }
 std::string integer(std::uint64_t v) { return std::to_string(v); }
 std::string boolean(bool v) { return v ? "1" : "0"; }
-
-std::string hostName() {
-  char buffer[256] = {};
-  return gethostname(buffer, sizeof(buffer) - 1) == 0 && buffer[0] ? buffer : "UNKNOWN";
-}
-
-// The processor model and count, from /proc/cpuinfo (as OMPL's machine::getCPUInfo reads it).
-std::string cpuInfo() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line, model;
-  int processors = 0;
-  while (std::getline(in, line)) {
-    if (line.rfind("processor", 0) == 0) ++processors;
-    if (model.empty() && line.rfind("model name", 0) == 0) model = line.substr(line.find(':') + 2);
-  }
-  std::ostringstream o;
-  o << (model.empty() ? "unknown processor" : model) << ", " << processors << " logical processors\n";
-  return o.str();
-}
 
 // One line of a log's property values: no "; " may occur inside a value, nor a line break.
 std::string cleanValue(std::string text) {
@@ -104,21 +82,13 @@ Properties counterProperties(const planners::PlanResult& result) {
           {"milestones INTEGER", integer(result.milestones)}};
 }
 
-std::string utcNow() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char buffer[32];
-  std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M:%S", &utc);
-  return buffer;
-}
-
 std::string omplLogText(const cspace::Scenario& scenario, const DriverOptions& options,
                         const std::vector<PlannerRuns>& results, const ExperimentTiming& timing) {
   const std::string simplifier = !options.simplify ? "none" : options.simplify_svm ? "svpp" : "shortcut";
   std::ostringstream o;
-  // The library that wrote it (ompl_benchmark_statistics records "svmp <version>"); the format is OMPL's.
-  o << "svmp version " << SVMP_VERSION << "\n";
+  // The library that wrote it: ompl_benchmark_statistics records "svmp <the line's last word>", here
+  // the version and the git revision of the code (provenance.hpp). The format is OMPL's.
+  o << "svmp version " << SVMP_VERSION << "-" << sourceRevision() << "\n";
   o << "Experiment " << cleanValue(scenario.name.empty() ? "NO_NAME" : scenario.name) << "\n";
   const Properties experiment = {{"scenario_file TEXT", scenario.path},
                                  {"dof INTEGER", std::to_string(scenario.robot->dof())},
@@ -138,7 +108,7 @@ std::string omplLogText(const cspace::Scenario& scenario, const DriverOptions& o
     << options.seed + options.runs - 1 << ", checker " << options.checker << ", simplifier " << simplifier << ".\n"
     << "Solved means certified collision-free (cspace/certified_motion_validator.hpp); times in seconds.\n"
     << "|>>>\n";
-  o << "<<<|\n" << cpuInfo() << "|>>>\n";
+  o << "<<<|\n" << cpuInfo() << "\n|>>>\n";
   o << options.seed << " is the random seed\n";
   o << (options.time_limit > 0 ? real(options.time_limit) : "inf") << " seconds per run\n";
   o << "inf MB per run\n";

@@ -41,7 +41,5 @@ void writeOmplLog(const std::string& file, const cspace::Scenario& scenario, con
 // calls, distance queries, certified segments, repaired stretches, exact checks, support vectors,
 // milestones (svmp-ompl-benchmark records them for our planners too).
 std::map<std::string, std::string> counterProperties(const planners::PlanResult& result);
-// The current UTC time as ExperimentTiming::started wants it.
-std::string utcNow();
 
 }  // namespace svmp::experiments

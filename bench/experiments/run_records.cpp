@@ -115,6 +115,7 @@ struct ShardUnion {
   std::map<std::string, std::set<std::string>> planner_overrides;  // each planner's own --set values
   std::vector<PlannerRuns> results;                               // planners in order of first appearance
   std::set<std::uint64_t> seeds;                                  // the shards' --seed values
+  std::map<std::string, std::set<std::string>> machines;          // host, cpu, simd -> the shards' values
 
   void add(const std::string& file, const std::string& first_file) {
     const json shard = readJsonFile(file);
@@ -129,6 +130,12 @@ struct ShardUnion {
         throw std::runtime_error(file + ": field '" + field + "' is " + shard[field].dump() + ", but " + first_file +
                                  " has " + first[field].dump());
     }
+    // Shards of other code are not one run (an older svmp-plan wrote no revision).
+    if (shard.value("revision", "") != first.value("revision", ""))
+      throw std::runtime_error(file + ": field 'revision' is " + shard.value("revision", "(none)") + ", but " +
+                               first_file + " has " + first.value("revision", "(none)") +
+                               " (shards of different code are not one run)");
+    for (const char* machine : {"host", "cpu", "simd"}) machines[machine].insert(shard.value(machine, "unknown"));
     seeds.insert(get<std::uint64_t>(shard, "seed", file));
     const std::set<std::string> shard_overrides = addOverrides(file, list(shard, "overrides", file));
     const json& shard_results = shard["results"];
@@ -145,6 +152,9 @@ struct ShardUnion {
                                  " (different parameter values are different runs)");
       auto runs = std::find_if(results.begin(), results.end(), [&](const PlannerRuns& r) { return r.planner == planner; });
       if (runs == results.end()) runs = results.insert(results.end(), PlannerRuns{planner, {}, {}});
+      if (const auto it = shard_results[p].find("parameters"); it != shard_results[p].end() && it->is_object())
+        for (const auto& [key, value] : it->items())
+          if (value.is_string()) runs->parameters[key] = value.get<std::string>();
       const json& records = list(shard_results[p], "records", where);
       for (size_t r = 0; r < records.size(); ++r)
         runs->runs.push_back(recordFromJson(records[r], where + ".records[" + std::to_string(r) + "]"));
@@ -265,6 +275,12 @@ MergedShards mergeShards(const std::vector<std::string>& files, const std::strin
   if (results.empty()) throw std::runtime_error("flag --merge: the shards hold no planner's runs");
 
   MergedShards merged;
+  // The first shard's version, revision and start; each machine field lists the shards' values.
+  merged.provenance = {first.value("version", "unknown"), first.value("revision", "unknown"),
+                       first.value("started", "unknown"), "", "", ""};
+  for (auto [field, value] : {std::pair{"host", &merged.provenance.host}, std::pair{"cpu", &merged.provenance.cpu},
+                              std::pair{"simd", &merged.provenance.simd}})
+    for (const std::string& v : shards.machines[field]) *value += (value->empty() ? "" : "; ") + v;
   const std::string file = scenario_file.empty() ? get<std::string>(first, "file", files.front()) : scenario_file;
   merged.scenario = cspace::loadScenario(file);
   if (merged.scenario.name != get<std::string>(first, "scenario", files.front()) ||

@@ -22,6 +22,7 @@ struct MergedShards {
   cspace::Scenario scenario;  // loaded from the shards' "file" (or the given override)
   DriverOptions options;      // runs and seed span the union of the shards; the rest as the shards had it
   std::vector<PlannerRuns> results;  // planners in order of first appearance, records in (seed, query) order
+  Provenance provenance;             // the shards': their revision (one), their machines (each listed once)
 };
 
 // Reads shard JSON files written by svmp-plan --json and merges them as one run over the union of

@@ -27,13 +27,18 @@ int main(int argc, char** argv) {
     std::cout << experiments::driverUsage();
     return 0;
   }
+  if (options.version) {
+    const experiments::Provenance p = experiments::Provenance::now();
+    std::cout << "svmp-plan " << p.version << " (revision " << p.revision << ", SVM loops " << p.simd << ")\n";
+    return 0;
+  }
   try {
     if (!options.merge_files.empty()) {
       if (!options.json_path.empty()) experiments::checkWritable("--json", options.json_path);
       const auto merged = experiments::mergeShards(options.merge_files, options.scenario);
       experiments::printTable(merged.scenario, merged.options, merged.results, std::cout);
       if (!options.json_path.empty())
-        experiments::writeJson(options.json_path, merged.scenario, merged.options, merged.results);
+        experiments::writeJson(options.json_path, merged.scenario, merged.options, merged.results, merged.provenance);
       return 0;
     }
     cspace::Scenario scenario = cspace::loadScenario(options.scenario);
@@ -57,8 +62,9 @@ int main(int argc, char** argv) {
     }
     std::cerr << "svmp-plan: " << scenario.name << ": running " << options.planners.size() << " planner(s), "
               << options.runs << " run(s) each\n";
+    const experiments::Provenance provenance = experiments::Provenance::now();
 #ifdef SVMP_WITH_OMPL
-    experiments::ExperimentTiming timing{experiments::utcNow(), 0};
+    experiments::ExperimentTiming timing{provenance.started, 0};
 #endif
     [[maybe_unused]] const auto t0 = std::chrono::steady_clock::now();
     const auto results = experiments::runExperiment(scenario, options, std::cerr);
@@ -66,7 +72,8 @@ int main(int argc, char** argv) {
     timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 #endif
     experiments::printTable(scenario, options, results, std::cout);
-    if (!options.json_path.empty()) experiments::writeJson(options.json_path, scenario, options, results);
+    if (!options.json_path.empty())
+      experiments::writeJson(options.json_path, scenario, options, results, provenance);
     if (!options.paths_json.empty()) experiments::writePathsJson(options.paths_json, scenario, results);
     if (!options.paths_dir.empty()) experiments::writePathMatrices(options.paths_dir, scenario, results, std::cerr);
 #ifdef SVMP_WITH_OMPL

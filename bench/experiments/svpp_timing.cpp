@@ -40,6 +40,9 @@ struct MeanStd {
 
 }  // namespace
 
+constexpr const char* kUsage =
+    "usage: svpp-timing [--runs N] [--trials] [--set [svpp.]KEY=VALUE ...] FILE.yaml ...\n";
+
 int main(int argc, char** argv) {
   using namespace svmp;
   int runs = 1;
@@ -64,16 +67,21 @@ int main(int argc, char** argv) {
         std::cerr << "svpp-timing: --set expects KEY=VALUE, got '" << kv << "'\n";
         return 2;
       }
-      overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+      // svpp.KEY as svmp-plan spells it, or KEY alone: both name svpp's key.
+      const std::string key = kv.rfind("svpp.", 0) == 0 ? kv.substr(5, eq - 5) : kv.substr(0, eq);
+      overrides.emplace_back(key, kv.substr(eq + 1));
+    } else if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage;
+      return 0;
     } else if (arg.rfind("--", 0) == 0) {
-      files.clear();  // --help, or a flag it does not know: the usage
+      files.clear();  // a flag it does not know: the usage
       break;
     } else {
       files.push_back(arg);
     }
   }
   if (files.empty()) {
-    std::cerr << "usage: svpp-timing [--runs N] [--trials] [--set KEY=VALUE ...] FILE.yaml ...\n";
+    std::cerr << kUsage;
     return 2;
   }
   MeanStd all_svm, found_svm, found_path, total, patterns;

@@ -108,6 +108,33 @@ TEST(DriverOutput, PathsAndResultsParseBackWithTheSameValues) {
   fs::remove_all(dir);
 }
 
+// The JSON says what ran and where: the code's revision, the machine, and each planner's parameters
+// as it used them, those it derived from the problem included (svmp's step is 1/40 of the mean
+// side, sigma twice the step).
+TEST(DriverOutput, TheJsonSaysWhatRanAndWhereItRan) {
+  const Experiment run = runText(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [4, 2]}}\n"
+      "obstacles: [{name: a, shape: box, size: [0.4, 0.4, 1], position: [1, 1, 0]},\n"
+      "            {name: b, shape: box, size: [0.4, 0.4, 1], position: [3, 1, 0]}]\n"
+      "start: [0.2, 0.2]\ngoal: [3.8, 1.8]\nresolution: 0.01\nplanners: {svmp: {k: 7}}\n",
+      "svmp", 1);
+  const fs::path file = fs::temp_directory_path() / "svmp_driver_provenance_test.json";
+  writeJson(file.string(), run.scenario, run.options, run.results);
+  const YAML::Node json = YAML::LoadFile(file.string());
+  fs::remove(file);
+  EXPECT_EQ(json["revision"].as<std::string>(), sourceRevision());
+  EXPECT_FALSE(json["version"].as<std::string>().empty());
+  EXPECT_FALSE(json["host"].as<std::string>().empty());
+  EXPECT_NE(json["cpu"].as<std::string>().find("logical processors"), std::string::npos);
+  const std::string simd = json["simd"].as<std::string>();
+  EXPECT_TRUE(simd == "avx512" || simd == "avx2" || simd == "sse2") << simd;
+  const YAML::Node params = json["results"][0]["parameters"];
+  EXPECT_EQ(params["k"].as<int>(), 7);                   // set in the file
+  EXPECT_EQ(params["repair_rounds"].as<int>(), 5);       // its default
+  EXPECT_DOUBLE_EQ(params["step"].as<double>(), 0.075);  // derived: (4 + 2) / 2 / 40
+  EXPECT_DOUBLE_EQ(params["sigma"].as<double>(), 0.15);
+}
+
 // An obstacle SVMP has no sample of is told: in the run's warnings, once in the log, and in the JSON.
 TEST(DriverOutput, ObstaclesLeftUnsampledAreWarnedAbout) {
   const Experiment run = runText(
@@ -266,6 +293,14 @@ TEST(DriverOutput, MergeRefusesShardsThatAreNotOneRun) {
        "must be a non-negative integer"},
       {variant("threads.json", "\"threads\": 1", "\"threads\": -7"), "not svmp-plan's options"},
       {variant("planner.json", "\"planner\": \"prm\"", "\"planner\": \"prn\""), "planner 'prn' is not one"}};
+  // Shards of other code: two files, the second from another revision.
+  const std::string revised = variant("revised.json", "\"revision\": \"", "\"revision\": \"x");
+  try {
+    mergeShards({good, revised}, "");
+    ADD_FAILURE() << "shards of two revisions merged";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("shards of different code are not one run"), std::string::npos) << e.what();
+  }
   for (const auto& [file, expected] : cases) {
     try {
       mergeShards({file}, "");

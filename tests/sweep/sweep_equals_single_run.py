@@ -22,7 +22,7 @@ SCENARIO = os.path.join(SOURCE, "bench", "scenarios", "thesis_fig3_5.yaml")
 # informed sampler draws from OMPL's own generator; docs/architecture.md "Determinism").
 PLANNERS, SEED, RUNS = "svmp,prm,ompl-rrtconnect,ompl-lazyprm,ompl-fmt,ompl-rrt,ompl-sbl,ompl-rrtstar", 3, 10
 SHARDS = 4 * len(PLANNERS.split(","))
-TIME_FIELDS = {"time_ms", "build_ms", "query_ms", "simplify_ms", "phase_ms"}
+TIME_FIELDS = {"time_ms", "build_ms", "query_ms", "simplify_ms", "phase_ms", "started"}
 failures = []
 
 
@@ -78,7 +78,8 @@ with open(os.path.join(sweep, "merged", "thesis_fig3_5.json")) as f:
     merged = json.load(f)
 
 # The merged JSON: header, per-run records (seed order) and aggregates equal the single run's.
-for key in ("scenario", "file", "dof", "runs", "queries", "seed", "threads", "simplified", "checker", "overrides"):
+for key in ("scenario", "file", "dof", "runs", "queries", "seed", "threads", "simplified", "checker", "overrides",
+            "version", "revision", "host", "cpu", "simd"):
     check(merged[key] == expected[key], f"header field {key}: merged {merged[key]!r}, single {expected[key]!r}")
 check([r["planner"] for r in merged["results"]] == PLANNERS.split(","), "planners in the single run's order")
 for got, want in zip(merged["results"], expected["results"]):
@@ -150,14 +151,25 @@ check("proxy from different seeds" in err, f"proxy checkers trained from differe
 err = run(SWEEP, "plan", os.path.join(WORK, "refused"), "--scenario", SCENARIO, "--", "--checker", "fastron-fk",
           expect=2).stderr
 check("trained from --seed" in err, f"the sweep refuses a proxy checker: {err}")
-# A failing shard fails `local` (naming it, its log holding svmp-plan's error) and the merge.
+# A bad planner parameter fails the plan, before any shard runs (svmp-plan --check).
+err = run(SWEEP, "plan", os.path.join(WORK, "bad_param"), "--scenario", SCENARIO, "--planners", "svmp",
+          "--param", "svmp.sigma=-1", "--driver", DRIVER, expect=2).stderr
+check("planners.svmp.sigma" in err, f"the plan names the bad parameter: {err}")
+# A failing shard (its scenario broken after the plan) fails `local` (naming it, its log holding
+# svmp-plan's error), `status` (exit 1, each shard marked failed) and the merge.
 failing = os.path.join(WORK, "failing")
-run(SWEEP, "plan", failing, "--scenario", SCENARIO, "--planners", "svmp", "--runs", "2", "--shards", "2",
-    "--param", "svmp.sigma=-1", "--driver", DRIVER)
+broken = os.path.join(WORK, "broken.yaml")
+shutil.copy(SCENARIO, broken)
+run(SWEEP, "plan", failing, "--scenario", broken, "--planners", "svmp", "--runs", "2", "--shards", "2",
+    "--driver", DRIVER)
+with open(broken, "w") as f:
+    f.write("robot: {type: point}\n")
 err = run(SWEEP, "local", failing, expect=None).stderr
 check("2 shard(s) not finished" in err, f"failed shards are reported: {err}")
-with open(os.path.join(failing, "logs", "thesis_fig3_5_svmp_svmp.sigma=-1_seeds1-1.log")) as f:
-    check("planners.svmp.sigma" in f.read(), "the shard's log holds svmp-plan's error")
+with open(os.path.join(failing, "logs", "broken_svmp_seeds1-1.log")) as f:
+    check("broken.yaml" in f.read(), "the shard's log holds svmp-plan's error")
+out = run(SWEEP, "status", failing, expect=1).stdout
+check(out.count("failed (exit 2") == 2 and "2 failed" in out, f"status marks the failed shards: {out}")
 check("not finished" in run(SWEEP, "merge", failing, expect=2).stderr, "merge refuses unfinished shards")
 err = run(DRIVER, "--merge", *svmp_shards, "--runs", "3", expect=2).stderr
 check("--runs" in err, f"run flags with --merge are refused: {err}")
