@@ -34,6 +34,7 @@ struct Tree {
   std::vector<char> boundary;  // kInterior, kBoundary or kFacesNoFree
   std::string warning;
   bool stopped = false;
+  bool out_of_reach = false;  // then no warning of its own: sampleObstacles names them all in one
 };
 
 // Nearest node by a linear scan: trees hold a few hundred nodes, so a scan over contiguous scaled
@@ -136,7 +137,7 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
       return tree;
     }
   } else if (outOfReach(checker, obstacle)) {
-    tree.warning = "obstacle '" + obstacle.name + "': beyond the robot's reach, not sampled";
+    tree.out_of_reach = true;
     return tree;
   } else {
     Eigen::VectorXd q(space.dim());
@@ -267,6 +268,22 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
   for (const auto& tree : trees) total += static_cast<int>(tree.nodes.size());
   samples.points.resize(space.dim(), total);
   int column = 0;
+  // One warning for the obstacles out of reach (crs3_far_near: 300 lines for 300 far boxes), naming
+  // the first ten.
+  std::vector<std::string> far;
+  for (size_t t = 0; t < trees.size(); ++t)
+    if (trees[t].out_of_reach) far.push_back("'" + targets[t]->name + "'");
+  if (!far.empty()) {
+    constexpr size_t kNamed = 10;
+    std::string names = far.front();
+    for (size_t i = 1; i < std::min(far.size(), kNamed); ++i) names += ", " + far[i];
+    if (far.size() > kNamed) names += " and " + std::to_string(far.size() - kNamed) + " more";
+    const std::string warning = far.size() == 1 ? "obstacle " + names + ": beyond the robot's reach, not sampled"
+                                                : std::to_string(far.size()) +
+                                                      " obstacles beyond the robot's reach, not sampled: " + names;
+    samples.warnings.push_back(warning);
+    samples.unsampled.push_back(warning);
+  }
   for (size_t t = 0; t < trees.size(); ++t) {
     samples.tree_sizes.push_back(static_cast<int>(trees[t].nodes.size()));
     if (!trees[t].warning.empty()) samples.warnings.push_back(trees[t].warning);

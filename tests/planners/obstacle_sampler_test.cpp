@@ -291,6 +291,25 @@ TEST(ObstacleSampler, ObstacleBeyondTheArmsReachIsSkippedWithoutSearching) {
   EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
 }
 
+// Many obstacles out of reach are one warning naming the first ten, not a warning each.
+TEST(ObstacleSampler, ObstaclesBeyondReachAreOneWarning) {
+  std::string yaml =
+      "robot: {type: planar_arm, lengths: [1.0, 0.8], widths: 0.05, limits: {lower: [-pi, -2.5], upper: [pi, 2.5]}}\n"
+      "obstacles:\n  - {name: near, shape: box, size: [0.2, 0.2, 1], position: [0.6, 0.6, 0]}\n";
+  for (int i = 1; i <= 12; ++i)
+    yaml += "  - {name: far" + std::to_string(i) + ", shape: box, size: [0.2, 0.2, 1], position: [" +
+            std::to_string(3 + i) + ", 0, 0]}\n";
+  auto w = makeWorld(yaml + "start: [0, 0.5]\ngoal: [3, 0.5]\nresolution: 0.01\n");
+  planners::ObstacleSamplerOptions opt;
+  opt.step = 0.05;
+  opt.samples_per_tree = 30;
+  const auto [s, checks] = sampleCountingChecks(*w, opt, 31);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0], "12 obstacles beyond the robot's reach, not sampled: 'far1', 'far2', 'far3', 'far4', "
+                           "'far5', 'far6', 'far7', 'far8', 'far9', 'far10' and 2 more");
+  EXPECT_EQ(s.unsampled, s.warnings);
+}
+
 TEST(ObstacleSampler, SameSeedGivesSameSamplesWithOneAndTwoThreads) {
   auto w = makeWorld(kThreeObstacles);
   const auto opt = samplerOptions();
