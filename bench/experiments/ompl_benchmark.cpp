@@ -4,18 +4,26 @@
 // (planners/ompl/scenario_setup.hpp), runs each planner --runs times under --time-limit and writes
 // OMPL's log (whole or not at all), which ompl_benchmark_statistics turns into Planner Arena's database.
 // Our planners (svmp, prm, local, svpp: planners/ompl/svm_planners.hpp) take the scenario's parameters;
-// OMPL's (PRM, LazyPRM, RRTConnect, RRT) its defaults. Every run also records "collision checks"
+// OMPL's eight (PRM, LazyPRM, RRTConnect, RRT, SBL, RRTstar, FMT, InformedRRTstar, or by svmp-plan's
+// names ompl-prm, ...) OMPL's defaults; --set PLANNER.KEY=VALUE sets either through OMPL's ParamSet,
+// as Planner Arena lists them. Every run also records "collision checks"
 // (configurations our checker tested during the run, whoever asked) and, for ours, our counters
 // (bench/experiments/ompl_log.hpp counterProperties).
 // Bad input: one error naming the flag or file and value, exit status 2.
+#include <ompl/geometric/planners/fmt/FMT.h>
 #include <ompl/geometric/planners/prm/LazyPRM.h>
 #include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <algorithm>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "bench/experiments/atomic_file.hpp"
@@ -34,9 +42,12 @@ using namespace svmp;
 
 const char* kUsage =
     "usage: svmp-ompl-benchmark --scenario FILE --log FILE [--planners LIST] [--runs N] [--time-limit SEC]\n"
-    "                           [--seed S] [--threads T] [--query I]\n"
+    "                           [--seed S] [--threads T] [--query I] [--set PLANNER.KEY=VALUE ...]\n"
     "  --planners   comma-separated, default svmp,PRM,RRTConnect: ours (svmp, prm, local, svpp) and\n"
-    "               OMPL's (PRM, LazyPRM, RRTConnect, RRT)\n"
+    "               OMPL's (PRM, LazyPRM, RRTConnect, RRT, SBL, RRTstar, FMT, InformedRRTstar, or as\n"
+    "               svmp-plan names them: ompl-prm, ompl-lazyprm, ompl-rrtconnect, ...)\n"
+    "  --set        a parameter of a planner of --planners, through OMPL's ParamSet (Planner Arena's\n"
+    "               names; ours take the scenario's keys)\n"
     "  --runs       runs per planner (default 10); --time-limit seconds per run (default 10)\n"
     "  --seed       OMPL's random seed (ompl::RNG::setSeed), default 1; --query: the scenario's query (0)\n"
     "  --log        OMPL's benchmark log: ompl_benchmark_statistics -d DB FILE, then Planner Arena\n";
@@ -44,6 +55,7 @@ const char* kUsage =
 struct Flags {
   std::string scenario, log;
   std::vector<std::string> planners = {"svmp", "PRM", "RRTConnect"};
+  std::vector<std::pair<std::string, std::string>> sets;  // ("PLANNER.KEY", "VALUE")
   int runs = 10, threads = 1, query = 0;
   double time_limit = 10;
   unsigned long seed = 1;
@@ -64,21 +76,60 @@ Flags parseFlags(int argc, char** argv) {
     else if (flag == "--seed") f.seed = static_cast<unsigned long>(experiments::parseLong(flag, v, 1, experiments::kMaxSeed));
     else if (flag == "--time-limit") f.time_limit = experiments::parseDouble(flag, v, 1e-3, 1e6);
     else if (flag == "--planners") f.planners = experiments::parsePlannerList(v);  // as svmp-plan: no name twice
+    else if (flag == "--set") {
+      const size_t dot = v.find('.'), eq = v.find('=');
+      if (dot == std::string::npos || eq == std::string::npos || dot > eq)
+        throw std::invalid_argument("flag --set " + v + ": expected PLANNER.KEY=VALUE");
+      f.sets.emplace_back(v.substr(0, eq), v.substr(eq + 1));
+    }
     else throw std::invalid_argument("unknown flag '" + flag + "'");
   }
   if (f.scenario.empty()) throw std::invalid_argument("flag --scenario is required");
   if (f.log.empty()) throw std::invalid_argument("flag --log is required");
+  for (const auto& [key, value] : f.sets)
+    if (std::find(f.planners.begin(), f.planners.end(), key.substr(0, key.find('.'))) == f.planners.end())
+      throw std::invalid_argument("flag --set " + key + "=" + value + ": planner '" + key.substr(0, key.find('.')) +
+                                  "' is not among --planners");
   return f;
 }
 
-ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPtr& si, const cspace::Scenario& s) {
-  if (auto ours = ompl_planners::makeSvmOmplPlanner(name, si, s.paramsFor(name))) return ours;
-  if (name == "PRM") return std::make_shared<og::PRM>(si);
-  if (name == "LazyPRM") return std::make_shared<og::LazyPRM>(si);
-  if (name == "RRTConnect") return std::make_shared<og::RRTConnect>(si);
-  if (name == "RRT") return std::make_shared<og::RRT>(si);
-  throw std::invalid_argument("flag --planners: unknown planner '" + name +
-                              "' (svmp, prm, local, svpp, PRM, LazyPRM, RRTConnect, RRT)");
+// OMPL's planners by their class names and by svmp-plan's registry names.
+ob::PlannerPtr makeOmplPlanner(const std::string& name, const ob::SpaceInformationPtr& si) {
+  if (name == "PRM" || name == "ompl-prm") return std::make_shared<og::PRM>(si);
+  if (name == "LazyPRM" || name == "ompl-lazyprm") return std::make_shared<og::LazyPRM>(si);
+  if (name == "RRTConnect" || name == "ompl-rrtconnect") return std::make_shared<og::RRTConnect>(si);
+  if (name == "RRT" || name == "ompl-rrt") return std::make_shared<og::RRT>(si);
+  if (name == "SBL" || name == "ompl-sbl") return std::make_shared<og::SBL>(si);
+  if (name == "RRTstar" || name == "ompl-rrtstar") return std::make_shared<og::RRTstar>(si);
+  if (name == "FMT" || name == "ompl-fmt") return std::make_shared<og::FMT>(si);
+  if (name == "InformedRRTstar" || name == "ompl-informedrrtstar") return std::make_shared<og::InformedRRTstar>(si);
+  return nullptr;
+}
+
+// The planner `name` with the --set values that name it.
+ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPtr& si, const cspace::Scenario& s,
+                           const std::vector<std::pair<std::string, std::string>>& sets) {
+  ob::PlannerPtr planner = ompl_planners::makeSvmOmplPlanner(name, si, s.paramsFor(name));
+  if (!planner) planner = makeOmplPlanner(name, si);
+  if (!planner)
+    throw std::invalid_argument("flag --planners: unknown planner '" + name +
+                                "' (svmp, prm, local, svpp, PRM, LazyPRM, RRTConnect, RRT, SBL, RRTstar, FMT, "
+                                "InformedRRTstar; or ompl-prm, ompl-lazyprm, ...)");
+  for (const auto& [key, value] : sets) {
+    if (key.substr(0, key.find('.')) != name) continue;
+    const std::string param = key.substr(key.find('.') + 1);
+    if (!planner->params().hasParam(param)) {
+      std::vector<std::string> names;
+      planner->params().getParamNames(names);
+      std::string known;
+      for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+      throw std::invalid_argument("flag --set " + key + "=" + value + ": planner '" + name + "' has no parameter '" +
+                                  param + "' (" + known + ")");
+    }
+    if (!planner->params().setParam(param, value))
+      throw std::invalid_argument("flag --set " + key + "=" + value + ": planner '" + name + "' refused the value");
+  }
+  return planner;
 }
 
 }  // namespace
@@ -105,7 +156,7 @@ int main(int argc, char** argv) {
     const auto setup = world->simpleSetup(flags.query);
     ompl::tools::Benchmark benchmark(*setup, name);
     for (const std::string& planner : flags.planners)
-      benchmark.addPlanner(makePlanner(planner, setup->getSpaceInformation(), world->scenario()));
+      benchmark.addPlanner(makePlanner(planner, setup->getSpaceInformation(), world->scenario(), flags.sets));
     benchmark.addExperimentParameter("scenario_file", "TEXT", world->scenario().path);
     benchmark.addExperimentParameter("threads", "INTEGER", std::to_string(flags.threads));
     // Our checker's count over each run, OMPL's planners and ours counted alike. Benchmark checks a
@@ -134,8 +185,18 @@ int main(int argc, char** argv) {
     experiments::writeFileAtomically(flags.log, log.str());
     for (const auto& planner : benchmark.getRecordedExperimentData().planners) {
       int solved = 0;
-      for (const auto& run : planner.runs) solved += run.count("solved BOOLEAN") && run.at("solved BOOLEAN") == "1";
-      std::cout << planner.name << ": " << solved << "/" << planner.runs.size() << " solved\n";
+      std::map<std::string, int> statuses;  // ours' own status names, else OMPL's
+      for (const auto& run : planner.runs) {
+        solved += run.count("solved BOOLEAN") && run.at("solved BOOLEAN") == "1";
+        if (run.count("svmp status TEXT")) ++statuses[run.at("svmp status TEXT")];
+        else if (run.count("status ENUM"))
+          ++statuses[ob::PlannerStatus(static_cast<ob::PlannerStatus::StatusType>(std::stoi(run.at("status ENUM"))))
+                         .asString()];
+      }
+      std::cout << planner.name << ": " << solved << "/" << planner.runs.size() << " solved (";
+      for (auto it = statuses.begin(); it != statuses.end(); ++it)
+        std::cout << (it == statuses.begin() ? "" : ", ") << it->first << " " << it->second;
+      std::cout << ")\n";
     }
     std::cerr << "svmp-ompl-benchmark: wrote " << flags.log << "\n";
     return 0;
