@@ -250,11 +250,30 @@ bool sharedBuild(const cspace::Scenario& scenario, const DriverOptions& options)
   return scenario.queries.size() > 1 || options.queries > 0;
 }
 
-void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options) {
+void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options, std::ostream* out) {
   checkOverrideTargets(options);
   std::ostringstream quiet;
   const World world(scenario, options, quiet);
-  makePlanners(scenario, options, world.context);
+  checkPlannerSections(scenario);
+  for (const std::string& name : options.planners) {
+    const cspace::ParameterSet params = parametersFor(name, scenario, options);
+    const auto planner = planners::makePlanner(name, world.context, params);
+    if (!out) continue;
+    // Each key with the value a run would use and where it comes from (the file or --set, the
+    // planner's default, or derived from the problem), then its range.
+    const std::map<std::string, std::string> derived = planner->derivedParameters();
+    for (const auto& [key, declaration] : params.declarations()) {
+      const auto d = derived.find(key);
+      const std::string value = params.has(key) ? params.values().at(key)
+                                : d != derived.end() ? d->second
+                                                     : declaration.fallback;
+      const char* source = params.has(key) ? "set" : d != derived.end() && d->second != declaration.fallback
+                                                         ? "derived"
+                                                         : "default";
+      *out << "parameter  " << name << "." << key << " = " << value << "  (" << source
+           << (declaration.range.empty() ? "" : ", " + declaration.range) << ")\n";
+    }
+  }
   if (options.simplify_svm) svmSmoothingOptions(scenario, options);
 }
 

@@ -42,7 +42,9 @@ struct PlannerRuns {
 
 // Builds every planner of `options` with the scenario's parameters and --set overrides, as a run would,
 // and drops them: throws cspace::ScenarioError naming the planner, field and value (svmp-plan --check).
-void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options);
+// With `out`, prints each planner's parameters: the value a run would use, whether it was set, left
+// at its default or derived from the problem, and its range (svmp-plan --check).
+void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options, std::ostream* out = nullptr);
 
 // `count` start-goal pairs of configurations drawn uniformly (seeded) and valid under the exact
 // checker, start != goal (svmp-plan --queries). Throws cspace::ScenarioError when 1000 draws in a row

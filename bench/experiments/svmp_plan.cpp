@@ -5,6 +5,7 @@
 #include <chrono>
 #include <iostream>
 #include <new>
+#include <sstream>
 
 #include "bench/experiments/atomic_file.hpp"
 #include "bench/experiments/driver_options.hpp"
@@ -44,8 +45,11 @@ int main(int argc, char** argv) {
     cspace::Scenario scenario = cspace::loadScenario(options.scenario);
     if (options.queries > 0) scenario.queries = experiments::randomQueries(scenario, options.queries, options.seed);
     if (options.check) {
-      experiments::validatePlanners(scenario, options);
-      return experiments::printScenarioCheck(scenario, std::cout) ? 0 : 1;
+      std::ostringstream parameters;
+      experiments::validatePlanners(scenario, options, &parameters);
+      const bool ok = experiments::printScenarioCheck(scenario, std::cout);
+      std::cout << parameters.str();
+      return ok ? 0 : 1;
     }
     experiments::requireValidConfigurations(scenario);
     for (const auto& [flag, dir] : {std::pair{"--svg", options.svg_dir}, std::pair{"--path-dir", options.paths_dir}})
