@@ -60,7 +60,7 @@ void afterForkInChild() { forked_after_parallel = parallel_used.load(); }
 
 Plan plan(const Scenario& s, const std::string& planner, const py::int_& seed_in, const py::dict& params,
           const py::int_& query_in, const std::string& checker, double time_limit, const py::int_& threads_in,
-          bool simplify) {
+          const py::object& simplify) {
   const long long seed = integerArgument(seed_in, "seed", 0, experiments::kMaxSeed, "must be in [0, 2^62]");
   const int queries = static_cast<int>(s.scenario.queries.size());
   const int query = static_cast<int>(integerArgument(query_in, "query", 0, queries - 1,
@@ -88,25 +88,44 @@ Plan plan(const Scenario& s, const std::string& planner, const py::int_& seed_in
   options.threads = threads;
   options.time_limit = time_limit;
   options.checker = checker;
-  options.simplify = simplify;
+  if (py::isinstance<py::bool_>(simplify)) {
+    options.simplify = simplify.cast<bool>();
+  } else if (py::isinstance<py::str>(simplify) && simplify.cast<std::string>() == "svpp") {
+    options.simplify = options.simplify_svm = true;  // svmp-plan --simplify svpp
+  } else {
+    throw py::value_error("simplify is " + std::string(py::repr(simplify)) + ": expected False, True or 'svpp'");
+  }
+  // The driver's messages name "flag --set PLANNER.KEY=VALUE"; here they name params['KEY'].
+  std::vector<std::pair<std::string, std::string>> flag_names;
   for (const auto& [key, value] : params) {
     const std::string name = py::str(key);
     // "sigma" is the planner's own; "fastron-fk.gamma" names a checker's parameter in full.
+    const std::string full = name.find('.') == std::string::npos ? planner + "." + name : name;
+    const std::string text = parameterText(value);
+    flag_names.emplace_back("flag --set " + full + "=" + text, "params['" + name + "'] = " + text);
     try {
-      experiments::addOverride(options, name.find('.') == std::string::npos ? planner + "." + name : name,
-                               parameterText(value));
+      experiments::addOverride(options, full, text);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("params: ") + e.what());
     }
   }
+  const auto inPythonTerms = [&](std::string message) {
+    for (const auto& [flag, param] : flag_names)
+      for (size_t at; (at = message.find(flag)) != std::string::npos;) message.replace(at, flag.size(), param);
+    return message;
+  };
   cspace::Scenario one = s.scenario;
   one.queries = {s.scenario.queries[query]};
   experiments::requireValidConfigurations(one);  // as svmp-plan: a start in collision, a sample off its obstacle
   experiments::RunRecord record;
-  {
+  try {
     py::gil_scoped_release release;
     std::ostringstream log;
     record = experiments::runExperiment(one, options, log).front().runs.front();
+  } catch (const cspace::ScenarioError& e) {
+    throw cspace::ScenarioError(inPythonTerms(e.what()));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(inPythonTerms(e.what()));
   }
   const planners::PlanResult& r = record.result;
   Plan out;
@@ -152,8 +171,14 @@ void bindPlanning(py::module_& m) {
         for (const auto& q : s.scenario.queries) out.append(py::make_tuple(vectorToArray(q.start), vectorToArray(q.goal)));
         return out;
       }, "list of (start, goal) arrays")
+      .def_property_readonly("obstacles", [](const Scenario& s) {
+        py::list names;
+        for (const auto& o : s.scenario.environment->obstacles()) names.append(o.name);
+        return names;
+      }, "the obstacles' names in the file's order: obstacles[id - 1] is the one check() names by id")
       .def("check", [](const Scenario& s, const py::object& q) { return s.checker->check(s.point(q, "q")); }, py::arg("q"),
-           "exact check (FCL primitives): 0 free, the lowest id of an obstacle hit, -1 joint limits, -2 self-collision")
+           "exact check (FCL primitives): 0 free, -1 joint limits, the lowest id (1-based index into obstacles) "
+           "of a real obstacle hit, -2 self-collision")
       .def("is_valid", [](const Scenario& s, const py::object& q) { return s.checker->isValid(s.point(q, "q")); }, py::arg("q"))
       .def("clearance", [](const Scenario& s, const py::object& q) { return s.checker->clearance(s.point(q, "q")); },
            py::arg("q"), "distance of the robot to the nearest real obstacle (0 in contact), exact to 1e-6")
@@ -184,7 +209,8 @@ void bindPlanning(py::module_& m) {
         py::arg("query") = 0, py::arg("checker") = "fcl", py::arg("time_limit") = 0.0, py::arg("threads") = 1,
         py::arg("simplify") = false,
         "Runs one registered planner on one query of the scenario as svmp-plan does (--seed, --set PLANNER.KEY=VALUE "
-        "from params, --checker, --time-limit, --threads, --simplify); the path is certified collision-free.");
+        "from params, --checker, --time-limit, --threads, --simplify: True shortcuts, 'svpp' follows an SVM, "
+        "point robots); the path is certified collision-free.");
   m.def("planners", &planners::plannerNames, "registered planner names");
   ::pthread_atfork(nullptr, nullptr, &afterForkInChild);
 }

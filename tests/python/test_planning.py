@@ -33,6 +33,7 @@ def test_scenario_exposes_the_file(fig35):
     np.testing.assert_array_equal(goal, [9.0, 5.0])
     np.testing.assert_array_equal(fig35.lower, [0, 0])
     assert fig35.check([5.0, 3.0]) == 1 and fig35.check([5.0, 8.0]) == 2  # inside the lower, upper block
+    assert fig35.obstacles[0] == "lower" and len(fig35.obstacles) >= 2
     assert fig35.check([5.0, 6.15]) == 0 and fig35.clearance([5.0, 6.15]) == pytest.approx(0.15, abs=1e-5)
     assert fig35.distance([0, 0], [3, 4]) == pytest.approx(5.0)
 
@@ -109,8 +110,10 @@ def test_bad_plan_arguments_raise_value_error(fig35):
         svmp.plan(fig35, "rrt-star")
     with pytest.raises(ValueError, match="sigma"):
         svmp.plan(fig35, "svmp", params={"sigma": -1})
-    with pytest.raises(ValueError, match="samplez"):
-        svmp.plan(fig35, "prm", params={"samplez": 10})
+    with pytest.raises(ValueError, match=r"params\['samplez'\] = 10: field 'planners.prm.samplez'"):
+        svmp.plan(fig35, "prm", params={"samplez": 10})  # in Python's terms, not the flag's
+    with pytest.raises(ValueError, match="simplify is 'shortcut': expected False, True or 'svpp'"):
+        svmp.plan(fig35, "svmp", simplify="shortcut")
     with pytest.raises(ValueError, match="params: svmp.sigma is already set to '0.4'"):
         svmp.plan(fig35, "svmp", params={"sigma": 0.4, "svmp.sigma": 0.5})
     with pytest.raises(ValueError, match="query is 1: the scenario has 1 query"):
@@ -127,6 +130,17 @@ def test_bad_plan_arguments_raise_value_error(fig35):
         fig35.check([1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match=r"q\[0\] is nan"):
         fig35.is_valid([np.nan, 2.0])
+
+
+def test_svm_smoothing_from_python(fig35):
+    """simplify='svpp' is svmp-plan's --simplify svpp: the same raw path, smoothed and still certified."""
+    plain = svmp.plan(fig35, "svmp")
+    smoothed = svmp.plan(fig35, "svmp", simplify="svpp")
+    assert plain.solved and smoothed.solved
+    dense_recheck(fig35, smoothed.path, fig35.resolution / 10)
+    assert smoothed.counters["raw_length"] == pytest.approx(plain.counters["path_length"])
+    kept = any(w.startswith("--simplify svpp kept the path as planned") for w in smoothed.warnings)
+    assert kept != (not np.array_equal(smoothed.path, plain.path))
 
 
 def test_planners_lists_the_registry():
