@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -86,7 +88,7 @@ RunRecord recordFromJson(const json& j, const std::string& where) {
 
 json readJsonFile(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file + ": cannot open");
+  if (!in) throw std::runtime_error(file + ": cannot open: " + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   try {

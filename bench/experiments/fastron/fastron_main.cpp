@@ -24,7 +24,9 @@ const char* kUsage =
     "usage: svmp-fastron --scenario FILE [--experiment collision|planning|picture|all] [--trials N]\n"
     "                    [--moves M] [--test-samples N] [--obstacle-trials N] [--plans-per-move N]\n"
     "                    [--planners LIST] [--time-limit SEC] [--seed S] [--json FILE] [--svg DIR]\n"
-    "                    [--set fastron-fk.KEY=VALUE|fastron-rbf.KEY=VALUE ...]\n";
+    "                    [--set fastron-fk.KEY=VALUE|fastron-rbf.KEY=VALUE ...]\n"
+    "  collision, planning: the scenario's robot among a moving box (docs/fastron.md); picture: the\n"
+    "  paper's Fig 1, its own 3-DoF arm and obstacles (the scenario's parameters only)\n";
 
 struct Flags {
   std::string scenario, experiment = "all", json, svg;
@@ -135,8 +137,11 @@ int main(int argc, char** argv) {
     const auto planner_list = flags.planners.empty() ? std::vector<std::string>() : experiments::parsePlannerList(flags.planners);
     const auto known = planners::plannerNames();
     for (const auto& name : planner_list)
-      if (std::find(known.begin(), known.end(), name) == known.end())
-        throw cspace::ScenarioError("flag --planners: unknown planner '" + name + "'");
+      if (std::find(known.begin(), known.end(), name) == known.end()) {
+        std::string names;
+        for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
+        throw cspace::ScenarioError("flag --planners: unknown planner '" + name + "' (known: " + names + ")");
+      }
     if (!flags.json.empty()) experiments::checkWritable("--json", flags.json);
     if (!flags.svg.empty()) experiments::makeDirectory("--svg", flags.svg);
     const bool all = flags.experiment == "all";
