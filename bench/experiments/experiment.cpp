@@ -405,10 +405,11 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
         << meanStd(collect(runs, true, [](const RunRecord& r) { return r.min_clearance; }), 4) << "\n";
   }
   if (sharedBuild(scenario, options)) {
-    out << "\n" << scenario.queries.size() << " queries per run, one build per run: build and query time (ms, "
-        << "median over runs / over queries), queries solved, total time per run (build + all queries, mean)\n";
+    out << "\n" << scenario.queries.size() << " queries per run, one build per run: queries solved, build time "
+        << "(ms, median over runs), time per query (median and mean over all queries: a roadmap's first "
+        << "queries may grow it), total time per run (build + all queries, mean over runs)\n";
     out << std::left << std::setw(17) << "planner" << std::setw(14) << "solved" << std::setw(12) << "build"
-        << std::setw(12) << "per query" << "total per run\n";
+        << std::setw(14) << "query median" << std::setw(12) << "query mean" << "total per run\n";
     for (const auto& runs : results) {
       const std::vector<double> builds = buildTimes(runs);
       std::vector<double> per_query, totals(options.runs, 0.0);
@@ -417,13 +418,14 @@ void printTable(const cspace::Scenario& scenario, const DriverOptions& options,
         per_query.push_back(r.time_ms - r.build_ms);
         totals[i / scenario.queries.size()] += r.time_ms;
       }
-      std::ostringstream solved, b, q, t;
+      std::ostringstream solved, b, q, m, t;
       solved << runs.solved() << "/" << runs.runs.size();
       b << std::fixed << std::setprecision(1) << statsOf(builds).median;
       q << std::fixed << std::setprecision(2) << statsOf(per_query).median;
+      m << std::fixed << std::setprecision(2) << statsOf(per_query).mean;
       t << std::fixed << std::setprecision(1) << statsOf(totals).mean;
       out << std::left << std::setw(17) << runs.planner << std::setw(14) << solved.str() << std::setw(12) << b.str()
-          << std::setw(12) << q.str() << t.str() << "\n";
+          << std::setw(14) << q.str() << std::setw(12) << m.str() << t.str() << "\n";
     }
   }
   out << std::right;
