@@ -133,6 +133,33 @@ struct Proxy {
         << " ms, learned in " << s.learn_ms << " ms: " << s.train.support << " support points"
         << (s.train.converged ? "" : " (not converged)") << "\n";
     validator = std::make_unique<cspace::DiscreteMotionValidator>(*checker, exact.space, scenario.resolution);
+    warnOfClosedPassages(scenario, exact.space, options.checker, log);
+  }
+  // A proxy that predicts the file's free witness path in collision has closed a passage the queries
+  // need (a narrow gap the labelled samples missed): planning on it may fail, which the user should
+  // know before blaming the planners.
+  void warnOfClosedPassages(const cspace::Scenario& scenario, const cspace::ConfigurationSpace& space,
+                            const std::string& name, std::ostream& log) const {
+    for (size_t i = 0; i < scenario.queries.size(); ++i) {
+      const cspace::Query& q = scenario.queries[i];
+      if (q.witness.empty()) continue;
+      std::vector<Eigen::VectorXd> path = {q.start};
+      path.insert(path.end(), q.witness.begin(), q.witness.end());
+      path.push_back(q.goal);
+      long predicted = 0, tested = 0;
+      Eigen::VectorXd c(space.dim());
+      for (size_t k = 0; k + 1 < path.size(); ++k) {
+        const long parts = std::max(1L, static_cast<long>(std::ceil(space.distance(path[k], path[k + 1]) / scenario.resolution)));
+        for (long j = 0; j < parts && tested < 1000000; ++j, ++tested) {
+          space.interpolate(path[k], path[k + 1], static_cast<double>(j) / parts, c);
+          predicted += !checker->isValid(c);
+        }
+      }
+      if (predicted > 0)
+        log << "svmp-plan: warning: " << name << " predicts " << predicted << " of " << tested
+            << " configurations along query " << i << "'s witness path (free on the exact checker) in collision: "
+               "the proxy closes a passage that path takes, and planning on it may fail (docs/fastron.md)\n";
+    }
   }
   std::unique_ptr<cspace::FastronChecker> checker;
   std::unique_ptr<cspace::DiscreteMotionValidator> validator;  // the thesis' sampled validator, on the proxy
