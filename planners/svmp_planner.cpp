@@ -321,7 +321,7 @@ void SvmpPlanner::fillCounters(PlanResult& result) const {
 }
 
 bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node, int samples, cspace::Rng& rng,
-                              const Termination& stop, PlanResult& result) {
+                              const Termination& stop, PlanResult& result, TreeRoots from) {
   // The components hold the lazy roadmap's unchecked edges. Where the joined path does not hold, its
   // blocked edges are gone and the trees grow on from the components left, for as many samples as the
   // last join took, at least a tenth of them: a join found quickly is likely found again quickly
@@ -335,9 +335,14 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
   int linked = first;
   for (int left = samples; left > 0 && !stop();) {
     TreeStep step(options_.tree_range);  // afresh each call: panda_shelf's joins need the long steps
+    const auto roots = [&](int end) {  // from the query's ends: the end and the trees' own nodes
+      std::vector<int> nodes = with_query.component(end);
+      if (from == TreeRoots::kQueryEnds) std::erase_if(nodes, [&](int v) { return v != end && v < first; });
+      return nodes;
+    };
     const TreeConnectResult grown =
-        connectByTrees(with_query, with_query.component(start_node), with_query.component(goal_node), context_,
-                       options_.tree_range, left, rng, stop, &step);
+        connectByTrees(with_query, roots(start_node), roots(goal_node), context_, options_.tree_range, left, rng, stop,
+                       &step);
     // The joining sample counts too.
     left = std::min(left - grown.samples - 1, std::max(grown.samples + 1, samples / 10));
     if (!grown.connected) return false;
@@ -522,12 +527,20 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     // an arm deep in a sleeve and a sphere in a building, where RRTConnect grows 23k nodes: 1 of 30
     // failed with one size). A bound of work, not of time: the same seed fails the same way under
     // any time limit, and a query no path answers costs about 15x one size's trees.
+    // The sizes alternate between trees from the query's ends alone, as RRT-Connect grows them, and
+    // trees from the whole components: components of 10k repair nodes along a wall offer every sample
+    // beyond it a wall node as its nearest, so they reach a window 4e-4 of the wall's area only by
+    // chance (a 3-D point in [0, 1000]^3, 1 of 20 seeds failed; RRTConnect solved all), while a winding
+    // maze needs the components' reach (maze3d: 1 of 20 more failed from the ends alone). Alternating,
+    // both are solved and a failing query costs 8-12% less (Figs 2.10, 4.10, 4.12 with --queries 100).
     constexpr int kLastTreesFactor = 10, kLastTreesDoublings = 3;
     if (!repaired && options_.repair_rounds > 0 && options_.lazy && options_.lazy_trees > 0 && !stop()) {
       const int first = kLastTreesFactor * options_.lazy_trees, last = first << kLastTreesDoublings;
       bool joined = false;
-      for (int samples = first; samples <= last && !joined && !stop(); samples *= 2)
-        joined = joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result);
+      bool from_ends = true;
+      for (int samples = first; samples <= last && !joined && !stop(); samples *= 2, from_ends = !from_ends)
+        joined = joinByTrees(with_query, outcome.start_node, outcome.goal_node, samples, tree_rng, stop, result,
+                             from_ends ? TreeRoots::kQueryEnds : TreeRoots::kComponents);
       if (joined) break;
       why += std::string(why.empty() ? "" : "; ") + "trees of " + std::to_string(first) + " to " +
              std::to_string(last) + " uniform samples did not join them";

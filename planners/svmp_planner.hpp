@@ -212,9 +212,11 @@ class SvmpPlanner final : public Planner {
   // RRT-Connect trees of up to `samples` samples on the query roadmap: true, with result's path, when
   // they join the start's and the goal's components and a path between them holds its proofs (a join
   // whose path fails grows on, up to as many samples again as it took, at least a tenth of `samples`).
-  // The trees' step adapts to the clutter (connectByTrees).
+  // The trees' step adapts to the clutter (connectByTrees). They grow from the whole components, or
+  // from the query's ends and their own nodes alone.
+  enum class TreeRoots { kComponents, kQueryEnds };
   bool joinByTrees(Roadmap& with_query, int start_node, int goal_node, int samples, cspace::Rng& rng,
-                   const Termination& stop, PlanResult& result);
+                   const Termination& stop, PlanResult& result, TreeRoots from = TreeRoots::kComponents);
   // Adds the query roadmap's nodes from `first` on (after the milestones and the query's ends) to the
   // roadmap, with their edges except those to the query's ends.
   void keepTreeNodes(const Roadmap& with_query, int first);

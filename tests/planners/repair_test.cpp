@@ -246,5 +246,14 @@ TEST(NarrowPassage, SvmpRepairSpreadsOverAWallToFindItsWindow) {
   expectSvmpSolvesCertified("../unseen/window3d.yaml", {4, 50});
 }
 
+// A 20 x 20 window in a wall across [0, 1000]^3 (bench/unseen, a probe of the thirty-fifth session).
+// Seed 2: 160 repair rounds left components of 10k nodes along the wall, and the last trees, grown
+// from them, did not find the window (RRTConnect solved every seed): every sample beyond the wall
+// had a wall node as its nearest. The last trees now alternate with trees from the query's ends
+// alone, and those join. Certified, densely free.
+TEST(NarrowPassage, SvmpLastTreesFromTheQuerysEndsFindAWindowTheComponentsHide) {
+  expectSvmpSolvesCertified("../unseen/huge3d_w20.yaml", {2});
+}
+
 }  // namespace
 }  // namespace svmp::planners
