@@ -53,6 +53,9 @@ class LocalPlanner final : public Planner {
   void clear() override;
   void clearQuery() override;  // the samples, labels and model belong to one query
   PlannerView view() const override { return {&labelled_, risk(), nullptr}; }
+  std::map<std::string, std::string> derivedParameters() const override {
+    return {{"goal_radius", cspace::parameterText(options_.goal_radius < 0 ? options_.sigma : options_.goal_radius)}};
+  }
 
   const IkSamples& samples() const { return samples_; }
   const Labelling& labelling() const { return labelling_; }

@@ -171,7 +171,15 @@ std::map<std::string, std::string> SvmpPlanner::derivedParameters() const {
           {"step", parameterText(options_.step)},
           {"samples_per_tree", std::to_string(options_.samples_per_tree)},
           {"tree_range", parameterText(options_.tree_range)},
-          {"duplicate_radius", parameterText(options_.duplicate_radius)}};
+          {"duplicate_radius", parameterText(options_.duplicate_radius)},
+          {"descent_step", parameterText(options_.descent().max_step)},
+          {"fk_sigma", parameterText(fkSigma())}};
+}
+
+double SvmpPlanner::fkSigma() const {
+  // The FK kernel's width in the workspace: 5% of the arm's reach from its first joint.
+  const Eigen::VectorXd& reach = context_.checker.robot().jointReach();
+  return options_.fk_sigma > 0 ? options_.fk_sigma : reach.size() > 0 && reach[0] > 0 ? 0.05 * reach[0] : 0.1;
 }
 
 bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Termination& stop) {
@@ -259,9 +267,7 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
     cw = std::max(cw, w);
   }
   const robots::Robot& robot = context_.checker.robot();
-  const double reach = robot.jointReach().size() > 0 ? robot.jointReach()[0] : 0.0;
-  const double fk_sigma = options_.fk_sigma > 0 ? options_.fk_sigma : reach > 0 ? 0.05 * reach : 0.1;
-  risk_.emplace(RiskFunction::trainOneVsRest(points, classes, fk ? fk_sigma : options_.sigma,
+  risk_.emplace(RiskFunction::trainOneVsRest(points, classes, fk ? fkSigma() : options_.sigma,
                                              options_.C, class_weights, solver, context_.space.metricScale(),
                                              options_.truncated, context_.threads,
                                              fk ? &robot : nullptr,
@@ -332,12 +338,13 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
   // from one wall top to the other under a ceiling failed 6 of 20 seeds, and Fig 4.12's trees grew
   // 0-1 nodes in 450 samples (median 34 -> 6 ms; docs/reproduction.md, thirty-first session).
   const int first = std::max(start_node, goal_node) + 1;
+  const int own = with_query.numNodes();  // this call's nodes from here on (an earlier call's stay)
   int linked = first;
   for (int left = samples; left > 0 && !stop();) {
     TreeStep step(options_.tree_range);  // afresh each call: panda_shelf's joins need the long steps
-    const auto roots = [&](int end) {  // from the query's ends: the end and the trees' own nodes
+    const auto roots = [&](int end) {  // from the query's ends: the end and this call's nodes
       std::vector<int> nodes = with_query.component(end);
-      if (from == TreeRoots::kQueryEnds) std::erase_if(nodes, [&](int v) { return v != end && v < first; });
+      if (from == TreeRoots::kQueryEnds) std::erase_if(nodes, [&](int v) { return v != end && v < own; });
       return nodes;
     };
     const TreeConnectResult grown =

@@ -136,6 +136,7 @@ class SvmpPlanner final : public Planner {
   void clear() override;
   PlannerView view() const override;
   std::map<std::string, std::string> derivedParameters() const override;
+  double fkSigma() const;  // fk_sigma, or its default from the robot's reach
 
   // The steps of build(), callable one by one; each adds its time to `times`. Out of order they throw
   // std::logic_error. sampleObstacle returns false when `stop` ended it; trainMultiSvm returns "" or
@@ -213,7 +214,7 @@ class SvmpPlanner final : public Planner {
   // they join the start's and the goal's components and a path between them holds its proofs (a join
   // whose path fails grows on, up to as many samples again as it took, at least a tenth of `samples`).
   // The trees' step adapts to the clutter (connectByTrees). They grow from the whole components, or
-  // from the query's ends and their own nodes alone.
+  // from the query's ends and the nodes this call grew alone.
   enum class TreeRoots { kComponents, kQueryEnds };
   bool joinByTrees(Roadmap& with_query, int start_node, int goal_node, int samples, cspace::Rng& rng,
                    const Termination& stop, PlanResult& result, TreeRoots from = TreeRoots::kComponents);

@@ -55,7 +55,9 @@ const char* driverUsage() {
          "  --ompl-log  every run of every planner in OMPL's benchmark log format: ompl_benchmark_statistics\n"
          "              -d DB FILE makes the database Planner Arena reads\n"
          "  --check     print the scenario's summary, validate planners and --set, verify the witness, warn\n"
-         "              of obstacles thinner than one resolution step\n"
+         "              of obstacles thinner than one resolution step, list each planner's parameters (value,\n"
+         "              set / default / derived, range)\n"
+         "  --version   the version, the git revision it was built from and the SVM loops' instruction set\n"
          "       svmp-plan --merge SHARD.json... [--json FILE] [--scenario FILE]\n"
          "  --merge     merge the --json files of shards of one run (seed ranges of scripts/sweep) into that\n"
          "              run's table and JSON; the scenario is the shards' \"file\" unless --scenario is given\n";

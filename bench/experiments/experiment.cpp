@@ -133,26 +133,27 @@ struct Proxy {
         << " ms, learned in " << s.learn_ms << " ms: " << s.train.support << " support points"
         << (s.train.converged ? "" : " (not converged)") << "\n";
     validator = std::make_unique<cspace::DiscreteMotionValidator>(*checker, exact.space, scenario.resolution);
-    warnOfClosedPassages(scenario, exact.space, options.checker, log);
+    warnOfClosedPassages(scenario, exact, options.checker, log);
   }
   // A proxy that predicts the file's free witness path in collision has closed a passage the queries
   // need (a narrow gap the labelled samples missed): planning on it may fail, which the user should
   // know before blaming the planners.
-  void warnOfClosedPassages(const cspace::Scenario& scenario, const cspace::ConfigurationSpace& space,
+  void warnOfClosedPassages(const cspace::Scenario& scenario, const planners::PlanningContext& exact,
                             const std::string& name, std::ostream& log) const {
+    const cspace::ConfigurationSpace& space = exact.space;
     for (size_t i = 0; i < scenario.queries.size(); ++i) {
       const cspace::Query& q = scenario.queries[i];
       if (q.witness.empty()) continue;
       std::vector<Eigen::VectorXd> path = {q.start};
       path.insert(path.end(), q.witness.begin(), q.witness.end());
       path.push_back(q.goal);
-      long predicted = 0, tested = 0;
+      long predicted = 0, tested = 0;  // free configurations the proxy predicts in collision
       Eigen::VectorXd c(space.dim());
       for (size_t k = 0; k + 1 < path.size(); ++k) {
         const long parts = std::max(1L, static_cast<long>(std::ceil(space.distance(path[k], path[k + 1]) / scenario.resolution)));
         for (long j = 0; j < parts && tested < 1000000; ++j, ++tested) {
           space.interpolate(path[k], path[k + 1], static_cast<double>(j) / parts, c);
-          predicted += !checker->isValid(c);
+          predicted += exact.checker.isValid(c) && !checker->isValid(c);  // a witness that collides is --check's
         }
       }
       if (predicted > 0)
@@ -183,21 +184,32 @@ struct World : planners::ExactSetup {
   const planners::PlanningContext context;
 };
 
+// One parameter of a planner as a run uses it: its value (derived from the problem where the planner
+// derived it, else as set or its default), where that comes from, and its range.
+struct ParameterUse {
+  std::string key, value, source, range;
+};
+
 // The planners of --planners with the scenario's parameters and --set; `parameters` (when given) gets
-// each one's parameter values, set or default.
+// each one's parameters as used.
 std::vector<std::unique_ptr<planners::Planner>> makePlanners(
     const cspace::Scenario& scenario, const DriverOptions& options, const planners::PlanningContext& context,
-    std::vector<std::map<std::string, std::string>>* parameters = nullptr) {
+    std::vector<std::vector<ParameterUse>>* parameters = nullptr) {
   checkPlannerSections(scenario);
   std::vector<std::unique_ptr<planners::Planner>> planners;
   for (const auto& name : options.planners) {
     const cspace::ParameterSet params = parametersFor(name, scenario, options);
     planners.push_back(planners::makePlanner(name, context, params));
     if (!parameters) continue;
-    std::map<std::string, std::string>& values = parameters->emplace_back();
-    for (const auto& [key, declaration] : params.declarations())
-      values[key] = params.has(key) ? params.values().at(key) : declaration.fallback;
-    for (const auto& [key, value] : planners.back()->derivedParameters()) values[key] = value;
+    const std::map<std::string, std::string> derived = planners.back()->derivedParameters();
+    std::vector<ParameterUse>& uses = parameters->emplace_back();
+    for (const auto& [key, declaration] : params.declarations()) {
+      const auto d = derived.find(key);
+      const std::string given = params.has(key) ? params.values().at(key) : declaration.fallback;
+      const std::string value = d != derived.end() ? d->second : given;
+      const char* source = params.has(key) ? "set" : value != given ? "derived" : "default";
+      uses.push_back({key, value, source, declaration.range});
+    }
   }
   return planners;
 }
@@ -281,27 +293,14 @@ void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& opt
   checkOverrideTargets(options);
   std::ostringstream quiet;
   const World world(scenario, options, quiet);
-  checkPlannerSections(scenario);
-  for (const std::string& name : options.planners) {
-    const cspace::ParameterSet params = parametersFor(name, scenario, options);
-    const auto planner = planners::makePlanner(name, world.context, params);
-    if (!out) continue;
-    // Each key with the value a run would use and where it comes from (the file or --set, the
-    // planner's default, or derived from the problem), then its range.
-    const std::map<std::string, std::string> derived = planner->derivedParameters();
-    for (const auto& [key, declaration] : params.declarations()) {
-      const auto d = derived.find(key);
-      const std::string value = params.has(key) ? params.values().at(key)
-                                : d != derived.end() ? d->second
-                                                     : declaration.fallback;
-      const char* source = params.has(key) ? "set" : d != derived.end() && d->second != declaration.fallback
-                                                         ? "derived"
-                                                         : "default";
-      *out << "parameter  " << name << "." << key << " = " << value << "  (" << source
-           << (declaration.range.empty() ? "" : ", " + declaration.range) << ")\n";
-    }
-  }
+  std::vector<std::vector<ParameterUse>> parameters;
+  makePlanners(scenario, options, world.context, &parameters);
   if (options.simplify_svm) svmSmoothingOptions(scenario, options);
+  if (!out) return;
+  for (size_t p = 0; p < parameters.size(); ++p)
+    for (const ParameterUse& u : parameters[p])
+      *out << "parameter  " << options.planners[p] << "." << u.key << " = " << u.value << "  (" << u.source
+           << (u.range.empty() ? "" : ", " + u.range) << ")\n";
 }
 
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
@@ -313,10 +312,13 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
   for (const auto& [a, b] : world.checker.droppedSelfCollisionPairs())
     log << "svmp-plan: " << droppedPairWarning(a, b) << " (--check)\n";
   // Every planner is built first: a bad parameter stops the run before any work.
-  std::vector<std::map<std::string, std::string>> parameters;
+  std::vector<std::vector<ParameterUse>> parameters;
   auto planners = makePlanners(scenario, options, world.context, &parameters);
   std::vector<PlannerRuns> results;
-  for (size_t p = 0; p < planners.size(); ++p) results.push_back({options.planners[p], {}, parameters[p]});
+  for (size_t p = 0; p < planners.size(); ++p) {
+    results.push_back({options.planners[p], {}, {}});
+    for (const ParameterUse& u : parameters[p]) results.back().parameters[u.key] = u.value;
+  }
   const auto& queries = scenario.queries;
   const bool shared_build = sharedBuild(scenario, options);
   svm::SolverWorkspace smoothing;  // --simplify svpp: each path's SVM reuses the last one's cache memory

@@ -61,6 +61,15 @@ struct Flags {
   unsigned long seed = 1;
 };
 
+// OMPL's class name of a planner svmp-plan names ompl-*; any other name as it is.
+std::string omplName(const std::string& name) {
+  static const std::map<std::string, std::string> kOmpl = {
+      {"ompl-prm", "PRM"}, {"ompl-lazyprm", "LazyPRM"}, {"ompl-rrtconnect", "RRTConnect"}, {"ompl-rrt", "RRT"},
+      {"ompl-sbl", "SBL"}, {"ompl-rrtstar", "RRTstar"}, {"ompl-fmt", "FMT"}, {"ompl-informedrrtstar", "InformedRRTstar"}};
+  const auto it = kOmpl.find(name);
+  return it == kOmpl.end() ? name : it->second;
+}
+
 Flags parseFlags(int argc, char** argv) {
   Flags f;
   for (int i = 1; i < argc; ++i) {
@@ -75,12 +84,21 @@ Flags parseFlags(int argc, char** argv) {
     else if (flag == "--query") f.query = static_cast<int>(experiments::parseLong(flag, v, 0, 100000));
     else if (flag == "--seed") f.seed = static_cast<unsigned long>(experiments::parseLong(flag, v, 1, experiments::kMaxSeed));
     else if (flag == "--time-limit") f.time_limit = experiments::parseDouble(flag, v, 1e-3, 1e6);
-    else if (flag == "--planners") f.planners = experiments::parsePlannerList(v);  // as svmp-plan: no name twice
+    else if (flag == "--planners") {
+      f.planners.clear();
+      for (const std::string& name : experiments::parsePlannerList(v)) f.planners.push_back(omplName(name));
+      for (size_t p = 0; p < f.planners.size(); ++p)  // PRM and ompl-prm are one planner
+        if (std::find(f.planners.begin(), f.planners.begin() + p, f.planners[p]) != f.planners.begin() + p)
+          throw std::invalid_argument("flag --planners: '" + f.planners[p] + "' listed twice");
+    }
     else if (flag == "--set") {
       const size_t dot = v.find('.'), eq = v.find('=');
       if (dot == std::string::npos || eq == std::string::npos || dot > eq)
         throw std::invalid_argument("flag --set " + v + ": expected PLANNER.KEY=VALUE");
-      f.sets.emplace_back(v.substr(0, eq), v.substr(eq + 1));
+      const std::string key = omplName(v.substr(0, dot)) + v.substr(dot, eq - dot);
+      for (const auto& [given, was] : f.sets)
+        if (given == key) throw std::invalid_argument("flag --set " + v + ": " + key + " is already set to '" + was + "'");
+      f.sets.emplace_back(key, v.substr(eq + 1));
     }
     else throw std::invalid_argument("unknown flag '" + flag + "'");
   }
@@ -93,16 +111,16 @@ Flags parseFlags(int argc, char** argv) {
   return f;
 }
 
-// OMPL's planners by their class names and by svmp-plan's registry names.
+// OMPL's planners by their class names (omplName).
 ob::PlannerPtr makeOmplPlanner(const std::string& name, const ob::SpaceInformationPtr& si) {
-  if (name == "PRM" || name == "ompl-prm") return std::make_shared<og::PRM>(si);
-  if (name == "LazyPRM" || name == "ompl-lazyprm") return std::make_shared<og::LazyPRM>(si);
-  if (name == "RRTConnect" || name == "ompl-rrtconnect") return std::make_shared<og::RRTConnect>(si);
-  if (name == "RRT" || name == "ompl-rrt") return std::make_shared<og::RRT>(si);
-  if (name == "SBL" || name == "ompl-sbl") return std::make_shared<og::SBL>(si);
-  if (name == "RRTstar" || name == "ompl-rrtstar") return std::make_shared<og::RRTstar>(si);
-  if (name == "FMT" || name == "ompl-fmt") return std::make_shared<og::FMT>(si);
-  if (name == "InformedRRTstar" || name == "ompl-informedrrtstar") return std::make_shared<og::InformedRRTstar>(si);
+  if (name == "PRM") return std::make_shared<og::PRM>(si);
+  if (name == "LazyPRM") return std::make_shared<og::LazyPRM>(si);
+  if (name == "RRTConnect") return std::make_shared<og::RRTConnect>(si);
+  if (name == "RRT") return std::make_shared<og::RRT>(si);
+  if (name == "SBL") return std::make_shared<og::SBL>(si);
+  if (name == "RRTstar") return std::make_shared<og::RRTstar>(si);
+  if (name == "FMT") return std::make_shared<og::FMT>(si);
+  if (name == "InformedRRTstar") return std::make_shared<og::InformedRRTstar>(si);
   return nullptr;
 }
 
@@ -126,7 +144,13 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
       throw std::invalid_argument("flag --set " + key + "=" + value + ": planner '" + name + "' has no parameter '" +
                                   param + "' (" + known + ")");
     }
-    if (!planner->params().setParam(param, value))
+    bool set = false;
+    try {  // OMPL's conversion of a real number throws past its own setValue
+      set = planner->params().setParam(param, value);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("flag --set " + key + "=" + value + ": " + e.what());
+    }
+    if (!set)
       throw std::invalid_argument("flag --set " + key + "=" + value + ": planner '" + name + "' refused the value");
   }
   return planner;

@@ -118,6 +118,7 @@ struct ShardUnion {
   std::vector<PlannerRuns> results;                               // planners in order of first appearance
   std::set<std::uint64_t> seeds;                                  // the shards' --seed values
   std::map<std::string, std::set<std::string>> machines;          // host, cpu, simd -> the shards' values
+  std::string started;                                            // the earliest shard's start
 
   void add(const std::string& file, const std::string& first_file) {
     const json shard = readJsonFile(file);
@@ -137,7 +138,9 @@ struct ShardUnion {
       throw std::runtime_error(file + ": field 'revision' is " + shard.value("revision", "(none)") + ", but " +
                                first_file + " has " + first.value("revision", "(none)") +
                                " (shards of different code are not one run)");
-    for (const char* machine : {"host", "cpu", "simd"}) machines[machine].insert(shard.value(machine, "unknown"));
+    for (const char* machine : {"host", "cpu", "simd"}) machines[machine].insert(shard.value(machine, "(not recorded)"));
+    const std::string shard_started = shard.value("started", "(not recorded)");
+    if (started.empty() || shard_started < started) started = shard_started;  // "YYYY-MM-DD HH:MM:SS" sorts
     seeds.insert(get<std::uint64_t>(shard, "seed", file));
     const std::set<std::string> shard_overrides = addOverrides(file, list(shard, "overrides", file));
     const json& shard_results = shard["results"];
@@ -154,9 +157,16 @@ struct ShardUnion {
                                  " (different parameter values are different runs)");
       auto runs = std::find_if(results.begin(), results.end(), [&](const PlannerRuns& r) { return r.planner == planner; });
       if (runs == results.end()) runs = results.insert(results.end(), PlannerRuns{planner, {}, {}});
+      // The parameters a planner ran with (the file's planners: section may have changed between shards).
+      std::map<std::string, std::string> parameters;
       if (const auto it = shard_results[p].find("parameters"); it != shard_results[p].end() && it->is_object())
         for (const auto& [key, value] : it->items())
-          if (value.is_string()) runs->parameters[key] = value.get<std::string>();
+          if (value.is_string()) parameters[key] = value.get<std::string>();
+      if (runs->runs.empty())
+        runs->parameters = parameters;
+      else if (runs->parameters != parameters)
+        throw std::runtime_error(where + ": planner '" + planner + "' ran with other parameters than in " + first_file +
+                                 " (different parameter values are different runs)");
       const json& records = list(shard_results[p], "records", where);
       for (size_t r = 0; r < records.size(); ++r)
         runs->runs.push_back(recordFromJson(records[r], where + ".records[" + std::to_string(r) + "]"));
@@ -277,9 +287,9 @@ MergedShards mergeShards(const std::vector<std::string>& files, const std::strin
   if (results.empty()) throw std::runtime_error("flag --merge: the shards hold no planner's runs");
 
   MergedShards merged;
-  // The first shard's version, revision and start; each machine field lists the shards' values.
-  merged.provenance = {first.value("version", "unknown"), first.value("revision", "unknown"),
-                       first.value("started", "unknown"), "", "", ""};
+  // The shards' version and revision (one), the earliest start; each machine field lists the shards' values.
+  merged.provenance = {first.value("version", "(not recorded)"), first.value("revision", "(not recorded)"),
+                       shards.started, "", "", ""};
   for (auto [field, value] : {std::pair{"host", &merged.provenance.host}, std::pair{"cpu", &merged.provenance.cpu},
                               std::pair{"simd", &merged.provenance.simd}})
     for (const std::string& v : shards.machines[field]) *value += (value->empty() ? "" : "; ") + v;

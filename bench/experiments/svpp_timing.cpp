@@ -74,8 +74,8 @@ int main(int argc, char** argv) {
       std::cout << kUsage;
       return 0;
     } else if (arg.rfind("--", 0) == 0) {
-      files.clear();  // a flag it does not know: the usage
-      break;
+      std::cerr << "svpp-timing: unknown flag '" << arg << "'\n" << kUsage;
+      return 2;
     } else {
       files.push_back(arg);
     }

@@ -123,6 +123,7 @@ TEST(DriverOutput, TheJsonSaysWhatRanAndWhereItRan) {
   const YAML::Node json = YAML::LoadFile(file.string());
   fs::remove(file);
   EXPECT_EQ(json["revision"].as<std::string>(), sourceRevision());
+  EXPECT_FALSE(json["revision"].as<std::string>().empty());
   EXPECT_FALSE(json["version"].as<std::string>().empty());
   EXPECT_FALSE(json["host"].as<std::string>().empty());
   EXPECT_NE(json["cpu"].as<std::string>().find("logical processors"), std::string::npos);
@@ -300,6 +301,14 @@ TEST(DriverOutput, MergeRefusesShardsThatAreNotOneRun) {
     ADD_FAILURE() << "shards of two revisions merged";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("shards of different code are not one run"), std::string::npos) << e.what();
+  }
+  // Shards whose planner ran with other parameters (the file's planners: section changed between them).
+  const std::string reparametrised = variant("params.json", "\"parameters\": {", "\"parameters\": {\"zz\": \"1\", ");
+  try {
+    mergeShards({good, reparametrised}, "");
+    ADD_FAILURE() << "shards of two parameter sets merged";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("ran with other parameters"), std::string::npos) << e.what();
   }
   for (const auto& [file, expected] : cases) {
     try {
