@@ -539,7 +539,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     // beyond it a wall node as its nearest, so they reach a window 4e-4 of the wall's area only by
     // chance (a 3-D point in [0, 1000]^3, 1 of 20 seeds failed; RRTConnect solved all), while a winding
     // maze needs the components' reach (maze3d: 1 of 20 more failed from the ends alone). Alternating,
-    // both are solved and a failing query costs 8-12% less (Figs 2.10, 4.10, 4.12 with --queries 100).
+    // both are solved, and a failing query costs up to 14% less (Figs 2.10 and 4.10, --queries 100).
     constexpr int kLastTreesFactor = 10, kLastTreesDoublings = 3;
     if (!repaired && options_.repair_rounds > 0 && options_.lazy && options_.lazy_trees > 0 && !stop()) {
       const int first = kLastTreesFactor * options_.lazy_trees, last = first << kLastTreesDoublings;
