@@ -71,7 +71,8 @@ struct ObstacleSamples {
   std::vector<char> boundary;    // 1 when the sample is a boundary sample
   std::vector<int> tree_sizes;   // per obstacle, in environment order
   std::vector<std::string> warnings;  // roots not found, trees that stopped early
-  std::vector<std::string> unsampled;  // the warnings of the obstacles left without a sample (one names all out of reach)
+  // The warnings of the obstacles left without a sample (one warning names all those out of reach).
+  std::vector<std::string> unsampled;
   bool stopped = false;          // ObstacleSamplerOptions::stop ended the sampling
   int size() const { return static_cast<int>(labels.size()); }
   int numBoundary() const;

@@ -150,7 +150,8 @@ struct Proxy {
       long predicted = 0, tested = 0;  // free configurations the proxy predicts in collision
       Eigen::VectorXd c(space.dim());
       for (size_t k = 0; k + 1 < path.size(); ++k) {
-        const long parts = std::max(1L, static_cast<long>(std::ceil(space.distance(path[k], path[k + 1]) / scenario.resolution)));
+        const double length = space.distance(path[k], path[k + 1]);
+        const long parts = std::max(1L, static_cast<long>(std::ceil(length / scenario.resolution)));
         for (long j = 0; j < parts && tested < 1000000; ++j, ++tested) {
           space.interpolate(path[k], path[k + 1], static_cast<double>(j) / parts, c);
           predicted += exact.checker.isValid(c) && !checker->isValid(c);  // a witness that collides is --check's
