@@ -26,14 +26,16 @@ std::vector<std::string> plannerNames() {
   return names;
 }
 
+std::string unknownPlanner(const std::string& name) {
+  std::string known;
+  for (const auto& n : plannerNames()) known += (known.empty() ? "" : ", ") + n;
+  return "unknown planner '" + name + "' (known: " + known + ")";
+}
+
 std::unique_ptr<Planner> makePlanner(const std::string& name, const PlanningContext& context,
                                      const cspace::ParameterSet& params) {
   const auto it = registry().find(name);
-  if (it == registry().end()) {
-    std::string known;
-    for (const auto& n : plannerNames()) known += (known.empty() ? "" : ", ") + n;
-    throw cspace::ScenarioError("unknown planner '" + name + "' (known: " + known + ")");
-  }
+  if (it == registry().end()) throw cspace::ScenarioError(unknownPlanner(name));
   auto planner = it->second(context, params);
   params.requireAllUsed();
   return planner;

@@ -27,6 +27,8 @@ std::unique_ptr<Planner> makePlanner(const std::string& name, const PlanningCont
                                      const cspace::ParameterSet& params);
 // Registered names, sorted.
 std::vector<std::string> plannerNames();
+// "unknown planner 'NAME' (known: ...)", the message makePlanner throws for a name not registered.
+std::string unknownPlanner(const std::string& name);
 
 }  // namespace svmp::planners
 

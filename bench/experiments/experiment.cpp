@@ -142,11 +142,7 @@ struct Proxy {
                             const std::string& name, std::ostream& log) const {
     const cspace::ConfigurationSpace& space = exact.space;
     for (size_t i = 0; i < scenario.queries.size(); ++i) {
-      const cspace::Query& q = scenario.queries[i];
-      if (q.witness.empty()) continue;
-      std::vector<Eigen::VectorXd> path = {q.start};
-      path.insert(path.end(), q.witness.begin(), q.witness.end());
-      path.push_back(q.goal);
+      const std::vector<Eigen::VectorXd> path = scenario.queries[i].witnessPath();
       long predicted = 0, tested = 0;  // free configurations the proxy predicts in collision
       Eigen::VectorXd c(space.dim());
       for (size_t k = 0; k + 1 < path.size(); ++k) {

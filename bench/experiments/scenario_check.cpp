@@ -123,10 +123,8 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
       if (!too_close.empty()) out << "\nerror      the " << (label[0] == 's' ? "start" : "goal") << " is " << too_close;
       out << "\n";
     }
-    if (q.witness.empty()) continue;
-    std::vector<Eigen::VectorXd> path = {q.start};
-    path.insert(path.end(), q.witness.begin(), q.witness.end());
-    path.push_back(q.goal);
+    const std::vector<Eigen::VectorXd> path = q.witnessPath();
+    if (path.empty()) continue;
     size_t failed = path.size();  // the first segment not certified
     double min_clearance = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k + 1 < path.size() && failed == path.size(); ++k) {

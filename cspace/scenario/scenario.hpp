@@ -42,6 +42,14 @@ struct Query {
   // Optional waypoints (start and goal excluded) of a known collision-free path: the scenario file's
   // proof by construction that the query has a solution. Empty when the file gives none.
   std::vector<Eigen::VectorXd> witness;
+  // start, the witness' waypoints, goal: the path the file proves (empty when it gives no witness).
+  std::vector<Eigen::VectorXd> witnessPath() const {
+    if (witness.empty()) return {};
+    std::vector<Eigen::VectorXd> path = {start};
+    path.insert(path.end(), witness.begin(), witness.end());
+    path.push_back(goal);
+    return path;
+  }
 };
 
 struct Scenario {

@@ -44,10 +44,7 @@ TEST(ScenarioFilesTest, EveryFileLoadsAndItsWitnessIsFree) {
       const Query& query = s.queries[i];
       EXPECT_EQ(checker.check(query.start), kFree) << "query " << i << " start";
       EXPECT_EQ(checker.check(query.goal), kFree) << "query " << i << " goal";
-      if (query.witness.empty()) continue;
-      std::vector<Eigen::VectorXd> path = {query.start};
-      path.insert(path.end(), query.witness.begin(), query.witness.end());
-      path.push_back(query.goal);
+      const std::vector<Eigen::VectorXd> path = query.witnessPath();
       for (size_t k = 0; k + 1 < path.size(); ++k)
         EXPECT_TRUE(certified.isValid(path[k], path[k + 1]))
             << "query " << i << ": witness segment " << k << " [" << path[k].transpose() << "] -> ["

@@ -137,11 +137,8 @@ int main(int argc, char** argv) {
     const auto planner_list = flags.planners.empty() ? std::vector<std::string>() : experiments::parsePlannerList(flags.planners);
     const auto known = planners::plannerNames();
     for (const auto& name : planner_list)
-      if (std::find(known.begin(), known.end(), name) == known.end()) {
-        std::string names;
-        for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
-        throw cspace::ScenarioError("flag --planners: unknown planner '" + name + "' (known: " + names + ")");
-      }
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        throw cspace::ScenarioError("flag --planners: " + planners::unknownPlanner(name));
     if (!flags.json.empty()) experiments::checkWritable("--json", flags.json);
     if (!flags.svg.empty()) experiments::makeDirectory("--svg", flags.svg);
     const bool all = flags.experiment == "all";
