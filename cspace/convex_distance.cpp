@@ -100,18 +100,22 @@ std::optional<double> sphereSeparation(const robots::Shape& a, const Eigen::Isom
 // Two boxes by the separating-axis test (Gottschalk, Lin and Manocha, OBBTree, 1996; Ericson 4.4.1):
 // they are apart exactly when one of the 15 axes (3 face normals each, 9 edge-pair cross products)
 // separates their projections, so the answer is exact where GJK needs up to four iterations (the
-// planar arms' links inside an obstacle). The small term added to |R| keeps a near-zero cross
-// product of parallel edges from separating them on rounding: grazing pairs count as touching.
+// planar arms' links inside an obstacle). The small term added to |R| on the edge-pair axes keeps a
+// near-zero cross product of parallel edges from separating them on rounding (parallel edges are
+// then separated, if at all, by a face axis). The face axes take no such term: it would widen
+// every box by 1e-12 of the other's size, 1.5e-8 for a 1e4 box, where the certifier proves
+// clearances down to 1e-6 of the resolution, and check() would reject configurations it proves.
 bool boxesOverlap(const robots::Shape& a, const Eigen::Isometry3d& pa, const robots::Shape& b,
                   const Eigen::Isometry3d& pb) {
   const Eigen::Vector3d ea = 0.5 * a.dims, eb = 0.5 * b.dims;
   const Eigen::Matrix3d r = pa.linear().transpose() * pb.linear();  // b's axes in a's frame
-  const Eigen::Matrix3d abs_r = r.cwiseAbs().array() + 1e-12;
+  Eigen::Matrix3d abs_r = r.cwiseAbs();
   const Eigen::Vector3d t = pa.linear().transpose() * (pb.translation() - pa.translation());
   for (int i = 0; i < 3; ++i)
     if (std::abs(t[i]) > ea[i] + abs_r.row(i).dot(eb)) return false;
   for (int j = 0; j < 3; ++j)
     if (std::abs(t.dot(r.col(j))) > abs_r.col(j).dot(ea) + eb[j]) return false;
+  abs_r.array() += 1e-12;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {

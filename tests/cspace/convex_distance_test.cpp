@@ -212,6 +212,32 @@ TEST(ConvexDistanceTest, ExactForSpheresAndForAPointAgainstABox) {
       0);
 }
 
+// A tilted cube of side 1e4 whose corner comes within 1e-8 of a small box's face (a probe's tool
+// box beside a wall): the two are apart, and the certifier's distance bound sees the gap, so a
+// configuration it proves is one check() calls free. The overlap test once widened every face by
+// 1e-12 of the other box's size (1.5e-8 here) and called them touching; 1e-8 into the face they touch.
+TEST(ConvexDistanceTest, AHugeBoxsCornerJustOffASmallBoxsFaceIsApart) {
+  const Shape tool = Shape::box(Eigen::Vector3d(0.02, 0.02, 0.02)), wall = Shape::box(Eigen::Vector3d::Constant(1e4));
+  Eigen::Isometry3d wall_pose = Eigen::Isometry3d::Identity();
+  wall_pose.linear() = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
+                        Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitY())).toRotationMatrix();
+  // The wall's corner nearest the tool: the one farthest along -x in the world.
+  Eigen::Vector3d corner_local;
+  for (int k = 0; k < 3; ++k) corner_local[k] = wall_pose.linear()(0, k) > 0 ? -5e3 : 5e3;
+  for (const double gap : {1e-8, -1e-8}) {
+    // The tool's face at x = 0.01; the corner at x = 0.01 + gap, y = z = 0 (over the face's centre).
+    wall_pose.translation() = Eigen::Vector3d(0.01 + gap, 0, 0) - wall_pose.linear() * corner_local;
+    const Eigen::Vector3d corner = wall_pose * corner_local;
+    ASSERT_NEAR(corner.x(), 0.01 + gap, 1e-11);
+    const auto hit = intersects(tool, Eigen::Isometry3d::Identity(), wall, wall_pose);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(*hit, gap < 0) << "gap " << gap;
+    const double d = distanceLowerBound(tool, Eigen::Isometry3d::Identity(), wall, wall_pose, Eigen::Vector3d::UnitX(), 1e-9);
+    if (gap > 0) EXPECT_GT(d, 0.5 * gap);
+    else EXPECT_LE(d, 0.0);
+  }
+}
+
 // A sphere against a cylinder in closed form, on a turned pole 10,000 long and 0.05 in radius, where GJK
 // had stalled and FCL reported a point 3e-5 from its side as touching: beside its side, off its rim
 // and over its cap, in either order; inside it, touching.
