@@ -4,7 +4,7 @@
 // robot's base (radius [ring_inner, ring_outer] from the z axis, height [z_low, z_high]) so it can
 // neither swallow the base (every configuration in collision) nor leave the arm's reach.
 // Thread safety: a value type; use one per thread.
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <random>
 
@@ -22,8 +22,10 @@ struct MovingBoxOptions {
 class MovingBox {
  public:
   MovingBox(const MovingBoxOptions& options, std::mt19937_64& rng);
-  // A box of given sides at a given centre (the planning experiment's obstacle).
-  MovingBox(const MovingBoxOptions& options, const Eigen::Vector3d& sides, const Eigen::Vector3d& centre);
+  // A box of given sides and pose (the planning experiment's obstacle; it keeps its orientation).
+  MovingBox(const MovingBoxOptions& options, const Eigen::Vector3d& sides, const Eigen::Isometry3d& pose);
+  // Whether a centre lies in the region the box moves in.
+  static bool inRegion(const MovingBoxOptions& options, const Eigen::Vector3d& centre);
   // One move of options.move in a random direction, reflected back into the allowed region.
   void move(std::mt19937_64& rng);
   const Eigen::Vector3d& centre() const { return centre_; }
@@ -39,6 +41,7 @@ class MovingBox {
   void keepInside();
   MovingBoxOptions options_;
   Eigen::Vector3d sides_, centre_;
+  Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Identity();
 };
 
 }  // namespace svmp::experiments::fastron

@@ -31,7 +31,17 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
       scenario.environment->obstacles().front().shape.kind != robots::ShapeKind::kBox)
     throw cspace::ScenarioError(scenario.path + ": the planning experiment needs a query and a box obstacle first");
   const cspace::Query& query = scenario.queries.front();
-  const robots::Shape& shape = scenario.environment->obstacles().front().shape;
+  const cspace::Obstacle& moving = scenario.environment->obstacles().front();
+  const robots::Shape& shape = moving.shape;
+  if (!MovingBox::inRegion(options.box, shape.pose.translation())) {
+    std::ostringstream msg;
+    const Eigen::Vector3d& c = shape.pose.translation();
+    msg << scenario.path << ": obstacle '" << moving.name << "' at (" << c.x() << ", " << c.y() << ", " << c.z()
+        << "): the planning experiment moves the first obstacle in a ring " << options.box.ring_inner << "-"
+        << options.box.ring_outer << " m from the base's z axis at heights " << options.box.z_low << "-"
+        << options.box.z_high << " m (an arm of the Panda's size); it must start there";
+    throw cspace::ScenarioError(msg.str());
+  }
   const std::vector<cspace::Obstacle> fixed(scenario.environment->obstacles().begin() + 1,
                                             scenario.environment->obstacles().end());
   const cspace::ConfigurationSpace space = scenario.makeSpace();
@@ -40,7 +50,7 @@ PlanningResults runPlanningExperiment(const cspace::Scenario& scenario, const Pl
   const std::vector<std::string> checkers = {"fcl", "fastron-fk", "fastron-rbf"};
   for (int trial = 0; trial < options.trials; ++trial) {
     std::mt19937_64 rng(options.seed + 1000003ULL * trial);
-    MovingBox box(options.box, shape.dims, shape.pose.translation());
+    MovingBox box(options.box, shape.dims, shape.pose);
     cspace::FastronChecker fk(scenario.robot, options.fk), rbf(scenario.robot, options.rbf);
     for (int move = 0; move <= options.moves; ++move) {
       std::unique_ptr<cspace::CollisionChecker> exact;
