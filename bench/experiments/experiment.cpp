@@ -135,24 +135,36 @@ struct Proxy {
     validator = std::make_unique<cspace::DiscreteMotionValidator>(*checker, exact.space, scenario.resolution);
     warnOfClosedPassages(scenario, exact, options.checker, log);
   }
-  // A proxy that predicts the file's free witness path in collision has closed a passage the queries
-  // need (a narrow gap the labelled samples missed): planning on it may fail, which the user should
-  // know before blaming the planners.
+  // A proxy that predicts a query's start or goal, or the file's free witness path, in collision has
+  // closed a passage the queries need (a narrow gap the labelled samples missed): planning on it may
+  // fail, which the user should know before blaming the planners.
   void warnOfClosedPassages(const cspace::Scenario& scenario, const planners::PlanningContext& exact,
                             const std::string& name, std::ostream& log) const {
     const cspace::ConfigurationSpace& space = exact.space;
     for (size_t i = 0; i < scenario.queries.size(); ++i) {
-      const std::vector<Eigen::VectorXd> path = scenario.queries[i].witnessPath();
+      const cspace::Query& query = scenario.queries[i];
       long predicted = 0, tested = 0;  // free configurations the proxy predicts in collision
+      auto closes = [&](const Eigen::VectorXd& c) {  // a witness that collides is --check's
+        const bool closed = exact.checker.isValid(c) && !checker->isValid(c);
+        ++tested, predicted += closed;
+        return closed;
+      };
+      // The ends, with or without a witness: a proxy that puts one in collision leaves no path.
+      for (const auto& [end, which] : {std::pair{&query.start, "start"}, std::pair{&query.goal, "goal"}})
+        if (closes(*end))
+          log << "svmp-plan: warning: " << name << " predicts query " << i << "'s " << which
+              << " in collision (free on the exact checker): planning on it may fail\n";
+      const std::vector<Eigen::VectorXd> path = query.witnessPath();
       Eigen::VectorXd c(space.dim());
       for (size_t k = 0; k + 1 < path.size(); ++k) {
         const double length = space.distance(path[k], path[k + 1]);
         const long parts = std::max(1L, static_cast<long>(std::ceil(length / scenario.resolution)));
-        for (long j = 0; j < parts && tested < 1000000; ++j, ++tested) {
+        for (long j = k == 0 ? 1 : 0; j < parts && tested < 1000000; ++j) {
           space.interpolate(path[k], path[k + 1], static_cast<double>(j) / parts, c);
-          predicted += exact.checker.isValid(c) && !checker->isValid(c);  // a witness that collides is --check's
+          closes(c);
         }
       }
+      if (path.empty()) continue;
       if (predicted > 0)
         log << "svmp-plan: warning: " << name << " predicts " << predicted << " of " << tested
             << " configurations along query " << i << "'s witness path (free on the exact checker) in collision: "
