@@ -1,7 +1,11 @@
 #include "cspace/environment.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
+
+#include "cspace/convex_distance.hpp"
 
 namespace svmp::cspace {
 
@@ -27,6 +31,53 @@ int Environment::numReal() const {
   int n = 0;
   for (const auto& o : obstacles_) n += !o.is_virtual;
   return n;
+}
+
+namespace {
+
+// Whether `inner` lies inside `outer` (both posed in the world): its support points along the 26
+// directions of the cube round the origin, in the world's frame and in either shape's, shrunk by 1e-9
+// towards its centre (identical shapes are inside each other despite rounding).
+bool inside(const robots::Shape& inner, const robots::Shape& outer) {
+  const Eigen::Vector3d centre = inner.pose.translation();
+  const Eigen::Matrix3d frames[] = {Eigen::Matrix3d::Identity(), inner.pose.linear(), outer.pose.linear()};
+  for (const Eigen::Matrix3d& frame : frames)
+    for (int x = -1; x <= 1; ++x)
+      for (int y = -1; y <= 1; ++y)
+        for (int z = -1; z <= 1; ++z) {
+          if (x == 0 && y == 0 && z == 0) continue;
+          const Eigen::Vector3d p = supportPoint(inner, inner.pose, frame * Eigen::Vector3d(x, y, z));
+          if (!outer.contains(p + 1e-9 * (centre - p))) return false;
+        }
+  return true;
+}
+
+}  // namespace
+
+std::vector<int> Environment::nestedGroups() const {
+  const int n = size();
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<Eigen::AlignedBox3d> box(n);
+  std::vector<int> order;
+  for (int i = 0; i < n; ++i)
+    if (!obstacles_[i].is_virtual) box[i] = obstacles_[i].shape.bounds(), order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return box[a].min().x() < box[b].min().x(); });
+  for (size_t u = 0; u < order.size(); ++u)
+    for (size_t v = u + 1; v < order.size() && box[order[v]].min().x() <= box[order[u]].max().x(); ++v) {
+      const int i = order[u], j = order[v];
+      if (root(i) == root(j) || !box[i].intersects(box[j])) continue;
+      const robots::Shape &a = obstacles_[i].shape, &b = obstacles_[j].shape;
+      if ((box[i].contains(box[j]) && inside(b, a)) || (box[j].contains(box[i]) && inside(a, b)))
+        parent[std::max(root(i), root(j))] = std::min(root(i), root(j));
+    }
+  std::vector<int> group(n);
+  for (int i = 0; i < n; ++i) group[i] = root(i) + 1;
+  return group;
 }
 
 }  // namespace svmp::cspace

@@ -33,6 +33,13 @@ class Environment {
   // Obstacle with that id; throws std::out_of_range when there is none.
   const Obstacle& byId(int id) const;
   int numReal() const;
+  // Per obstacle (index id - 1), the smallest id of the real obstacles it is joined to by a chain of
+  // real obstacles one inside another (a shape given twice, boxes nested; its own id when none;
+  // virtual obstacles keep theirs): one region of C-space. Obstacles that only overlap or touch, as
+  // the pieces of a frame round a window, stay apart. "Inside": the shape's support points along the
+  // 26 directions of the world's, its own and the other's axes (its corners, for a box) lie in the
+  // other shape, within 1e-9 of its size. Sweep over the x extents, so far-apart obstacles cost little.
+  std::vector<int> nestedGroups() const;
 
  private:
   std::vector<Obstacle> obstacles_;

@@ -229,6 +229,7 @@ class SvmpPlanner final : public Planner {
   Roadmap with_query_;  // roadmap_ plus a query's endpoints; assigned anew per round, keeping its allocations
   std::optional<NearestNeighbors> nn_;
   std::vector<bool> grown_by_trees_;  // roadmap_ nodes the repair's trees added (by index; shorter: no)
+  std::vector<int> obstacle_group_;     // obstacle id - 1 -> its sample label (Environment::nestedGroups)
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
   std::vector<std::pair<Eigen::VectorXd, int>> uncentred_;  // deferred descent ends and their classes
   // The step the repair's trees adapt (connectByTrees), carried across a query's rounds: a round's

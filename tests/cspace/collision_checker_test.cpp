@@ -126,6 +126,31 @@ TEST(CollisionCheckerTest, LowestIdWinsAndVirtualObstaclesMayBeTouched) {
   EXPECT_DOUBLE_EQ(only_virtual.clearance(q), std::numeric_limits<double>::infinity());
 }
 
+// Environment::nestedGroups: a shape given twice, a box inside a turned box, a sphere inside a box and
+// a chain of nested boxes join; the four boxes of a frame round a window, which overlap at its
+// corners, and a box that pokes out of another stay apart, as do virtual obstacles.
+TEST(EnvironmentTest, NestedObstaclesFormOneGroupAndAFramesPiecesDoNot) {
+  Eigen::Isometry3d turned = at(5, 5);
+  turned.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Environment env({
+      obstacle(Shape::box(Eigen::Vector3d(1, 1, 1), at(0, 0))),              // 1
+      obstacle(Shape::box(Eigen::Vector3d(1, 1, 1), at(0, 0))),              // 2: 1 again
+      obstacle(Shape::box(Eigen::Vector3d(2, 2, 2), turned)),                 // 3
+      obstacle(Shape::box(Eigen::Vector3d(0.5, 0.5, 0.5), turned)),           // 4: inside 3
+      obstacle(Shape::sphere(0.4, at(5.2, 5.1))),                             // 5: inside 3
+      obstacle(Shape::box(Eigen::Vector3d(0.2, 3, 1), at(-10, 0))),          // 6-9: a frame
+      obstacle(Shape::box(Eigen::Vector3d(0.2, 3, 1), at(-8, 0))),
+      obstacle(Shape::box(Eigen::Vector3d(2.2, 0.2, 1), at(-9, 1.4))),
+      obstacle(Shape::box(Eigen::Vector3d(2.2, 0.2, 1), at(-9, -1.4))),
+      obstacle(Shape::box(Eigen::Vector3d(1, 1, 1), at(10, 0))),             // 10
+      obstacle(Shape::box(Eigen::Vector3d(0.5, 0.5, 0.5), at(10.4, 0))),     // 11: pokes out of 10
+      obstacle(Shape::box(Eigen::Vector3d(0.5, 0.5, 0.5), at(0.1, 0)), true),  // 12: virtual, inside 1
+      obstacle(Shape::box(Eigen::Vector3d(0.6, 0.6, 0.6), at(0.1, 0))),      // 13: inside 1
+      obstacle(Shape::box(Eigen::Vector3d(0.3, 0.3, 0.3), at(0.15, 0))),     // 14: inside 13
+  });
+  EXPECT_EQ(env.nestedGroups(), (std::vector<int>{1, 1, 3, 3, 3, 6, 7, 8, 9, 10, 11, 12, 1, 1}));
+}
+
 TEST(CollisionCheckerTest, JointLimitsComeFirst) {
   const auto arm = planarArm({1.0, 1.0});
   const CollisionChecker checker(arm, environment({obstacle(Shape::box(Eigen::Vector3d(10, 10, 10)))}));

@@ -3,6 +3,8 @@
 // for (its repair: repair_test.cpp).
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "planners/path_simplifier.hpp"
 #include "planners/prm_planner.hpp"
 #include "planners/roadmap_builder.hpp"
@@ -208,6 +210,33 @@ TEST(InvalidQueries, WrongDimensionIsInvalidInput) {
   q.start = Eigen::Vector3d(0.1, 0.1, 0.1);
   for (const char* name : {"svmp", "prm"})
     EXPECT_EQ(w->planner(name)->solve(q, 1).status, PlanStatus::kInvalidInput) << name;
+}
+
+// Obstacles one inside another are one class (Environment::nestedGroups): two walls, one of them
+// given three times and the other holding a smaller box, train the two classes two walls train,
+// each keeping the weight of its heaviest piece.
+TEST(FewObstacles, SvmpLearnsNestedObstaclesAsOne) {
+  auto w = makeWorld(
+      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+      "obstacles:\n"
+      "  - {name: left, shape: box, size: [0.1, 0.6, 1.0], position: [0.3, 0.5, 0]}\n"
+      "  - {name: left_again, shape: box, size: [0.1, 0.6, 1.0], position: [0.3, 0.5, 0], weight: 3}\n"
+      "  - {name: right, shape: box, size: [0.1, 0.6, 1.0], position: [0.7, 0.5, 0]}\n"
+      "  - {name: left_once_more, shape: box, size: [0.1, 0.6, 1.0], position: [0.3, 0.5, 0]}\n"
+      "  - {name: inside_right, shape: box, size: [0.05, 0.2, 0.5], position: [0.7, 0.45, 0]}\n"
+      "start: [0.1, 0.5]\n"
+      "goal: [0.9, 0.5]\n"
+      "resolution: 0.01\n");
+  SvmpPlanner svmp(w->context, SvmpOptions{});
+  PhaseTimes times;
+  ASSERT_TRUE(svmp.sampleObstacle(1, times));
+  const std::set<int> labels(svmp.samples().labels.begin(), svmp.samples().labels.end());
+  EXPECT_EQ(labels, (std::set<int>{1, 3}));
+  ASSERT_EQ(svmp.trainMultiSvm(times), "");
+  EXPECT_EQ(svmp.risk()->numClasses(), 2);
+  const PlanResult r = svmp.solve(w->query(), 1);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_TRUE(pathIsValid(*w, r.path));
 }
 
 // One obstacle: the space's bounds are the other class, and the milestones lie between the two,
