@@ -85,10 +85,14 @@ std::string SvppOptions::validateFor(const cspace::ConfigurationSpace& space) co
   if (std::string why = validate(); !why.empty()) return why;
   const double diagonal = (space.upper() - space.lower()).norm();
   const double guides = guideSampleBound(space, guide_spacing, guide_distance);
+  const double virtuals = 4 * std::pow(virtual_samples, space.dim() - 1);
   std::ostringstream why;
   if (diagonal / step > kMaxStepsPerDiagonal)
     why << "step (" << step << ") is below 1/" << kMaxStepsPerDiagonal << " of the space's diagonal ("
         << diagonal << ")";
+  else if (virtuals > kMaxVirtualSamples)
+    why << "virtual_samples (" << virtual_samples << ") gives " << virtuals << " virtual samples in "
+        << space.dim() << "-D (4 N_v^" << space.dim() - 1 << "), more than " << kMaxVirtualSamples;
   else if (guides > kMaxGuideSamples)
     why << "guide_spacing (" << guide_spacing << ") gives up to " << guides
         << " guide samples in this space, more than " << kMaxGuideSamples;
@@ -112,6 +116,8 @@ SvppOptions SvppOptions::resolvedFor(const cspace::ConfigurationSpace& space, in
   // refused.
   if (guide_spacing == kDerived)
     while (guideSampleBound(space, o.guide_spacing, o.guide_distance) > kMaxGuideSamples) o.guide_spacing *= 1.1;
+  if (step == kDerived)  // half the finest step a file may set, so rounding never refuses it
+    o.step = std::max(o.step, 2 * (space.upper() - space.lower()).norm() / kMaxStepsPerDiagonal);
   return o;
 }
 

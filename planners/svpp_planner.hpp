@@ -63,9 +63,11 @@ struct SvppOptions {
   static SvppOptions fromParameters(const cspace::ParameterSet& params);
   std::string validate() const;  // "" when usable
   // validate(), and the resolved lengths bounded in `space`: at most kMaxStepsPerDiagonal steps
-  // across its diagonal and kMaxGuideSamples guide samples (a bound over every query), so no
-  // setting makes a training set or a surface following that memory or time cannot hold.
-  static constexpr double kMaxStepsPerDiagonal = 1e6, kMaxGuideSamples = 50000;
+  // across its diagonal (the paper's step makes 57), kMaxGuideSamples guide samples (a bound over
+  // every query) and kMaxVirtualSamples virtual ones (4 N_v^(dim - 1)), so no setting makes a
+  // training set or a surface following that memory or minutes cannot hold (a step 1e-6 of the
+  // diagonal, or N_v = 100 in 3-D, ran for minutes).
+  static constexpr double kMaxStepsPerDiagonal = 1e4, kMaxGuideSamples = 50000, kMaxVirtualSamples = 5000;
   std::string validateFor(const cspace::ConfigurationSpace& space) const;
   bool operator==(const SvppOptions&) const = default;
   // These options with every kDerived value scaled to `space` holding `obstacles` obstacles.

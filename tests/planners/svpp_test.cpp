@@ -246,7 +246,8 @@ TEST(SvppTest, BadParametersAndRobotsAreRejected) {
             std::string::npos);
   EXPECT_NE(message("step", "1e-9").find("field 'planners.svpp.step': step (1e-09) is below"),
             std::string::npos);
-  EXPECT_EQ(message("step", "1e-5"), "accepted");
+  EXPECT_NE(message("step", "1e-5").find("step (1e-05) is below 1/10000 of the space's diagonal"), std::string::npos);
+  EXPECT_EQ(message("step", "3e-4"), "accepted");
 
   const auto arm = test::makeWorld(
       "robot: {type: planar_arm, lengths: [1, 1], widths: 0.05}\n"
@@ -346,9 +347,9 @@ TEST(SvppTest, AFailureSaysWhichLimitEndedTheSearch) {
 
 TEST(SvppTest, TheTimeLimitStopsASurfaceFollowing) {
   const CertifiedWorld w(kSymmetric);
-  // Steps of 1e-5: up to 480,000 a pattern. The limit fires at its 100th poll, within the first
-  // pattern's following (the pattern loop polls once before it).
-  auto planner = w.planner(cspace::ParameterSet("test.yaml", "planners.svpp.", {{"step", "1e-5"}}));
+  // Steps of 3e-4 (the finest in this 2 x 2 space): up to 16,000 a pattern. The limit fires at its
+  // 100th poll, within the first pattern's following (the pattern loop polls once before it).
+  auto planner = w.planner(cspace::ParameterSet("test.yaml", "planners.svpp.", {{"step", "3e-4"}}));
   int polls = 0;
   const PlanResult r = planner->solve(w.world->query(), 1, Termination::when([&] { return ++polls > 100; }));
   EXPECT_EQ(r.status, PlanStatus::kTimeout) << r.message;
