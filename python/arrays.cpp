@@ -42,6 +42,26 @@ double numberArgument(const py::handle& value, const std::string& name) {
   return v;
 }
 
+bool truthArgument(const py::handle& value, const std::string& name) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  if (py::hasattr(value, "dtype") && py::hasattr(value, "item")) {
+    try {
+      if (py::dtype::from_args(value.attr("dtype")).kind() == 'b') return value.attr("item")().cast<bool>();
+    } catch (const py::error_already_set&) {
+    }
+  }
+  refuse(value, name, "expected True or False");
+}
+
+std::string pathArgument(const py::handle& value, const std::string& name) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__fspath__")) {
+    const py::object path = value.attr("__fspath__")();
+    if (py::isinstance<py::str>(path)) return path.cast<std::string>();
+  }
+  refuse(value, name, "expected a file name (str or os.PathLike)");
+}
+
 py::int_ integerValue(const py::handle& value, const std::string& name) {
   if (looksLikeNoNumber(value)) refuse(value, name, "expected an integer");
   PyObject* as_int = PyNumber_Index(value.ptr());  // Python and NumPy integers, 0-d integer arrays

@@ -58,15 +58,15 @@ std::atomic<bool> parallel_used{false};
 bool forked_after_parallel = false;
 void afterForkInChild() { forked_after_parallel = parallel_used.load(); }
 
-Plan plan(const Scenario& s, const std::string& planner, const py::int_& seed_in, const py::dict& params,
-          const py::int_& query_in, const std::string& checker, double time_limit, const py::int_& threads_in,
+Plan plan(const Scenario& s, const std::string& planner, const py::object& seed_in, const py::dict& params,
+          const py::object& query_in, const std::string& checker, double time_limit, const py::object& threads_in,
           const py::object& simplify) {
-  const long long seed = integerArgument(seed_in, "seed", 0, experiments::kMaxSeed, "must be in [0, 2^62]");
+  const long long seed = integerArgument(integerValue(seed_in, "seed"), "seed", 0, experiments::kMaxSeed, "must be in [0, 2^62]");
   const int queries = static_cast<int>(s.scenario.queries.size());
-  const int query = static_cast<int>(integerArgument(query_in, "query", 0, queries - 1,
+  const int query = static_cast<int>(integerArgument(integerValue(query_in, "query"), "query", 0, queries - 1,
                                                      "the scenario has " + std::to_string(queries) + " quer" +
                                                          (queries == 1 ? "y" : "ies")));
-  int threads = static_cast<int>(integerArgument(threads_in, "threads", 1, experiments::kMaxThreads,
+  int threads = static_cast<int>(integerArgument(integerValue(threads_in, "threads"), "threads", 1, experiments::kMaxThreads,
                                                  "must be in [1, " + std::to_string(experiments::kMaxThreads) + "]"));
   if (threads > 1 && forked_after_parallel) {
     if (PyErr_WarnEx(PyExc_RuntimeWarning,
@@ -109,6 +109,9 @@ Plan plan(const Scenario& s, const std::string& planner, const py::int_& seed_in
       throw std::invalid_argument(std::string("params: ") + e.what());
     }
   }
+  flag_names.emplace_back("is not among --planners", "is not the planner run ('" + planner + "')");
+  flag_names.emplace_back("--checker is ", "checker is ");
+  flag_names.emplace_back("flag --time-limit ", "time_limit = ");
   const auto inPythonTerms = [&](std::string message) {
     for (const auto& [flag, param] : flag_names)
       for (size_t at; (at = message.find(flag)) != std::string::npos;) message.replace(at, flag.size(), param);
@@ -126,6 +129,8 @@ Plan plan(const Scenario& s, const std::string& planner, const py::int_& seed_in
     throw cspace::ScenarioError(inPythonTerms(e.what()));
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(inPythonTerms(e.what()));
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(inPythonTerms(e.what()));
   }
   const planners::PlanResult& r = record.result;
   Plan out;
@@ -188,7 +193,8 @@ void bindPlanning(py::module_& m) {
       .def("__repr__", [](const Scenario& s) {
         return "<svmp.Scenario '" + s.scenario.name + "' dof=" + std::to_string(s.scenario.robot->dof()) + ">";
       });
-  m.def("load_scenario", [](const std::string& path) { return Scenario(cspace::loadScenario(path)); }, py::arg("path"),
+  m.def("load_scenario", [](const py::object& path) { return Scenario(cspace::loadScenario(pathArgument(path, "path"))); },
+        py::arg("path"),
         "Reads a scenario YAML file; a bad file raises svmp.ScenarioError (a ValueError) naming file, field and value.");
 
   py::class_<Plan>(m, "Plan", "One run of a planner: status, certified path and counters.")

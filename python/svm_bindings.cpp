@@ -30,7 +30,8 @@ struct Model {
 };
 
 // `x` of shape (d,) gives one value (and a (d,) gradient); (n, d) gives n values (and an (n, d) gradient).
-py::object evaluate(const Model& m, const py::object& x, bool with_gradient, bool truncated) {
+py::object evaluate(const Model& m, const py::object& x, bool with_gradient, const py::handle& truncated_in) {
+  const bool truncated = truthArgument(truncated_in, "truncated");
   const int d = m.model.dim();
   const DoubleArray a = DoubleArray::ensure(x);
   const int ndim = a ? static_cast<int>(a.ndim()) : 1;
@@ -59,7 +60,8 @@ std::optional<double> optionalNumber(const py::object& value, const std::string&
 
 Model train(const py::object& X_in, const py::object& y_in, const py::object& C_in, const py::object& gamma_in,
             const py::object& sigma_in, const py::object& eps, const py::object& max_iterations_in,
-            const py::object& cache_mb, bool shrinking) {
+            const py::object& cache_mb, const py::object& shrinking_in) {
+  const bool shrinking = truthArgument(shrinking_in, "shrinking");
   const std::optional<double> gamma = optionalNumber(gamma_in, "gamma"), sigma = optionalNumber(sigma_in, "sigma");
   const long long max_iterations = integerArgument(integerValue(max_iterations_in, "max_iterations"), "max_iterations",
                                                    1, std::numeric_limits<long>::max(), "must be in [1, 2^63 - 1]");
@@ -136,11 +138,11 @@ void bindSvm(py::module_& m) {
       .def_property_readonly("converged", [](const Model& s) { return s.solution.status == svm::SolverStatus::kOptimal; })
       .def_property_readonly("truncation_bound", [](const Model& s) { return s.truncated ? s.truncated->truncationBound() : 0.0; },
                              "max |F_truncated - F| = sum |coef_i| exp(-5)")
-      .def("decision", [](const Model& s, const py::object& x, bool truncated) { return evaluate(s, x, false, truncated); },
+      .def("decision", [](const Model& s, const py::object& x, const py::object& truncated) { return evaluate(s, x, false, truncated); },
            py::arg("x"), py::arg("truncated") = false,
            "F at x of shape (d,) (a float) or at each row of (n, d) (an (n,) array); truncated: only terms with "
            "exp(-gamma d^2) >= exp(-5)")
-      .def("gradient", [](const Model& s, const py::object& x, bool truncated) { return evaluate(s, x, true, truncated); },
+      .def("gradient", [](const Model& s, const py::object& x, const py::object& truncated) { return evaluate(s, x, true, truncated); },
            py::arg("x"), py::arg("truncated") = false, "grad F at x: shape (d,) for one point, (n, d) for rows")
       .def("__repr__", [](const Model& s) {
         return "<svmp.Model d=" + std::to_string(s.model.dim()) + " support_vectors=" +

@@ -4,9 +4,11 @@ again and the same numbers as svmp-plan; bad scenarios, parameters and points ra
 library's message."""
 import json
 import os
+import pathlib
 import subprocess
 
 import numpy as np
+
 import pytest
 
 import svmp
@@ -130,6 +132,12 @@ def test_bad_plan_arguments_raise_value_error(fig35):
         fig35.check([1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match=r"q\[0\] is nan"):
         fig35.is_valid([np.nan, 2.0])
+    with pytest.raises(ValueError, match="seed is 3.5: expected an integer"):
+        svmp.plan(fig35, "svmp", seed=3.5)
+    with pytest.raises(ValueError, match=r"params\['prm.samples'\] = 100: planner 'prm' is not the planner run \('svmp'\)"):
+        svmp.plan(fig35, "svmp", params={"prm.samples": 100})
+    with pytest.raises(ValueError, match="path is None: expected a file name"):
+        svmp.load_scenario(None)
 
 
 def test_svm_smoothing_from_python(tmp_path):
@@ -163,6 +171,15 @@ def test_numpy_scalars_are_parameter_values(fig35):
     assert plain.counters["collision_checks"] == numpy.counters["collision_checks"]
     np.testing.assert_array_equal(plain.path, numpy.path)
     assert svmp.plan(fig35, "prm", params={"samples": np.int64(100)}).status in ("solved", "failed")
+
+
+def test_numpy_integers_are_seeds_queries_and_threads(fig35):
+    """for seed in np.arange(...) plans as with Python integers (pybind11 alone refused np.int64)."""
+    plain = svmp.plan(fig35, "svmp", seed=3, query=0, threads=1)
+    numpy = svmp.plan(fig35, "svmp", seed=np.int64(3), query=np.int32(0), threads=np.uint8(1))
+    assert plain.counters["collision_checks"] == numpy.counters["collision_checks"]
+    np.testing.assert_array_equal(plain.path, numpy.path)
+    assert svmp.load_scenario(pathlib.Path(fig35.path)).name == fig35.name
 
 
 def test_a_scenario_planning_refuses_is_refused_here_too(tmp_path):

@@ -115,6 +115,8 @@ def test_sigma_is_gamma_one_over_two_sigma_squared(two_rings):
     ({"gamma": np.bool_(True)}, "gamma is .*True.*: expected a real number"),
     ({"C": "2"}, "C is '2': give a positive number"),
     ({"C": True}, "C is True: give a positive number"),
+    ({"shrinking": "no"}, "shrinking is 'no': expected True or False"),
+    ({"shrinking": 1}, "shrinking is 1: expected True or False"),
 ])
 def test_bad_parameters_raise_value_error(two_rings, kwargs, message):
     X, y = two_rings
