@@ -132,6 +132,9 @@ struct Proxy {
     log << "svmp-plan: " << options.checker << ": " << s.labelled << " configurations labelled in " << s.label_ms
         << " ms, learned in " << s.learn_ms << " ms: " << s.train.support << " support points"
         << (s.train.converged ? "" : " (not converged)") << "\n";
+    if (!s.train.converged)
+      warnings.push_back(options.checker + " stopped learning after " + std::to_string(s.train.steps) +
+                         " updates, not converged: some of its labelled configurations are predicted wrong");
     validator = std::make_unique<cspace::DiscreteMotionValidator>(*checker, exact.space, scenario.resolution);
     warnOfClosedPassages(scenario, exact, options.checker, log);
   }
@@ -139,7 +142,11 @@ struct Proxy {
   // closed a passage the queries need (a narrow gap the labelled samples missed): planning on it may
   // fail, which the user should know before blaming the planners.
   void warnOfClosedPassages(const cspace::Scenario& scenario, const planners::PlanningContext& exact,
-                            const std::string& name, std::ostream& log) const {
+                            const std::string& name, std::ostream& log) {
+    const auto warn = [&](const std::string& text) {
+      log << "svmp-plan: warning: " << text << "\n";
+      warnings.push_back(text);
+    };
     const cspace::ConfigurationSpace& space = exact.space;
     for (size_t i = 0; i < scenario.queries.size(); ++i) {
       const cspace::Query& query = scenario.queries[i];
@@ -152,8 +159,8 @@ struct Proxy {
       // The ends, with or without a witness: a proxy that puts one in collision leaves no path.
       for (const auto& [end, which] : {std::pair{&query.start, "start"}, std::pair{&query.goal, "goal"}})
         if (closes(*end))
-          log << "svmp-plan: warning: " << name << " predicts query " << i << "'s " << which
-              << " in collision (free on the exact checker): planning on it may fail\n";
+          warn(name + " predicts query " + std::to_string(i) + "'s " + which +
+               " in collision (free on the exact checker): planning on it may fail");
       const std::vector<Eigen::VectorXd> path = query.witnessPath();
       Eigen::VectorXd c(space.dim());
       for (size_t k = 0; k + 1 < path.size(); ++k) {
@@ -166,13 +173,14 @@ struct Proxy {
       }
       if (path.empty()) continue;
       if (predicted > 0)
-        log << "svmp-plan: warning: " << name << " predicts " << predicted << " of " << tested
-            << " configurations along query " << i << "'s witness path (free on the exact checker) in collision: "
-               "the proxy closes a passage that path takes, and planning on it may fail (docs/fastron.md)\n";
+        warn(name + " predicts " + std::to_string(predicted) + " of " + std::to_string(tested) +
+             " configurations along query " + std::to_string(i) + "'s witness path (free on the exact checker) in "
+             "collision: the proxy closes a passage that path takes, and planning on it may fail (docs/fastron.md)");
     }
   }
   std::unique_ptr<cspace::FastronChecker> checker;
   std::unique_ptr<cspace::DiscreteMotionValidator> validator;  // the thesis' sampled validator, on the proxy
+  std::vector<std::string> warnings;  // what every run on it is told (its JSON record, Plan.warnings)
 };
 
 // Everything a run shares: the exact setup (space, FCL checker, the thesis' sampled validator, the
@@ -377,7 +385,10 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
           if (planner.built()) planners::addBuild(build, record.result);
         }
         record.raw_length = planners::pathLength(record.result.path, world.space);
-        const size_t planner_warnings = record.result.warnings.size();  // the smoothing's come after
+        const size_t planner_warnings = record.result.warnings.size();  // the proxy's and smoothing's come after
+        if (world.proxy)
+          record.result.warnings.insert(record.result.warnings.end(), world.proxy->warnings.begin(),
+                                        world.proxy->warnings.end());
         if (options.simplify && record.result.solved()) {
           const auto t1 = Clock::now();
           if (options.simplify_svm) {

@@ -211,3 +211,10 @@ def test_a_process_forked_after_parallel_planning_plans_on_one_thread():
         checks, messages = result.get(timeout=60)
     assert checks == parent.counters["collision_checks"]
     assert any("planning on 1 thread" in m for m in messages)
+
+
+def test_a_proxy_that_did_not_converge_is_in_the_plans_warnings(fig35):
+    """svmp-plan says it on stderr; the run's record (JSON, Plan.warnings) says it too."""
+    plan = svmp.plan(fig35, "prm", checker="fastron-fk", params={"fastron-fk.max_updates": 1})
+    assert any("fastron-fk stopped learning after 1 updates, not converged" in w for w in plan.warnings), plan.warnings
+    assert not any("not converged" in w for w in svmp.plan(fig35, "prm", checker="fastron-fk").warnings)
