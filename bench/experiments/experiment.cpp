@@ -107,6 +107,25 @@ planners::SvppOptions svmSmoothingOptions(const cspace::Scenario& scenario, cons
   return svpp;
 }
 
+// One parameter of a planner or proxy as a run uses it: its value (derived from the problem where
+// the planner derived it, else as set or its default), where that comes from, and its range.
+struct ParameterUse {
+  std::string key, value, source, range;
+};
+
+std::vector<ParameterUse> parameterUses(const cspace::ParameterSet& params,
+                                        const std::map<std::string, std::string>& derived = {}) {
+  std::vector<ParameterUse> uses;
+  for (const auto& [key, declaration] : params.declarations()) {
+    const auto d = derived.find(key);
+    const std::string given = params.has(key) ? params.values().at(key) : declaration.fallback;
+    const std::string value = d != derived.end() ? d->second : given;
+    const char* source = params.has(key) ? "set" : value != given ? "derived" : "default";
+    uses.push_back({key, value, source, declaration.range});
+  }
+  return uses;
+}
+
 // With --checker fastron-*: the proxy (trained once, on the scenario's query end points too) and the
 // thesis' sampled validator on it; World's repairer verifies and repairs on the exact checker (Das &
 // Yip 2019, sec. IV-B).
@@ -116,6 +135,7 @@ struct Proxy {
     const cspace::ParameterSet params = parametersFor(options.checker, scenario, options);
     auto o = cspace::FastronCheckerOptions::fromParameters(options.checker, params);
     params.requireAllUsed();
+    parameters = parameterUses(params);
     o.threads = options.threads;
     checker = std::make_unique<cspace::FastronChecker>(scenario.robot, o);
     std::vector<Eigen::VectorXd> ends;
@@ -181,6 +201,7 @@ struct Proxy {
   std::unique_ptr<cspace::FastronChecker> checker;
   std::unique_ptr<cspace::DiscreteMotionValidator> validator;  // the thesis' sampled validator, on the proxy
   std::vector<std::string> warnings;  // what every run on it is told (its JSON record, Plan.warnings)
+  std::vector<ParameterUse> parameters;
 };
 
 // Everything a run shares: the exact setup (space, FCL checker, the thesis' sampled validator, the
@@ -201,12 +222,6 @@ struct World : planners::ExactSetup {
   const planners::PlanningContext context;
 };
 
-// One parameter of a planner as a run uses it: its value (derived from the problem where the planner
-// derived it, else as set or its default), where that comes from, and its range.
-struct ParameterUse {
-  std::string key, value, source, range;
-};
-
 // The planners of --planners with the scenario's parameters and --set; `parameters` (when given) gets
 // each one's parameters as used.
 std::vector<std::unique_ptr<planners::Planner>> makePlanners(
@@ -218,15 +233,7 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
     const cspace::ParameterSet params = parametersFor(name, scenario, options);
     planners.push_back(planners::makePlanner(name, context, params));
     if (!parameters) continue;
-    const std::map<std::string, std::string> derived = planners.back()->derivedParameters();
-    std::vector<ParameterUse>& uses = parameters->emplace_back();
-    for (const auto& [key, declaration] : params.declarations()) {
-      const auto d = derived.find(key);
-      const std::string given = params.has(key) ? params.values().at(key) : declaration.fallback;
-      const std::string value = d != derived.end() ? d->second : given;
-      const char* source = params.has(key) ? "set" : value != given ? "derived" : "default";
-      uses.push_back({key, value, source, declaration.range});
-    }
+    parameters->push_back(parameterUses(params, planners.back()->derivedParameters()));
   }
   return planners;
 }
@@ -314,9 +321,11 @@ void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& opt
   makePlanners(scenario, options, world.context, &parameters);
   if (options.simplify_svm) svmSmoothingOptions(scenario, options);
   if (!out) return;
+  std::vector<std::string> owners = options.planners;
+  if (world.proxy) parameters.push_back(world.proxy->parameters), owners.push_back(options.checker);
   for (size_t p = 0; p < parameters.size(); ++p)
     for (const ParameterUse& u : parameters[p])
-      *out << "parameter  " << options.planners[p] << "." << u.key << " = " << u.value << "  (" << u.source
+      *out << "parameter  " << owners[p] << "." << u.key << " = " << u.value << "  (" << u.source
            << (u.range.empty() ? "" : ", " + u.range) << ")\n";
 }
 
