@@ -188,7 +188,8 @@ void bindPlanning(py::module_& m) {
       .def("clearance", [](const Scenario& s, const py::object& q) { return s.checker->clearance(s.point(q, "q")); },
            py::arg("q"), "distance of the robot to the nearest real obstacle (0 in contact), exact to 1e-6")
       .def("distance", [](const Scenario& s, const py::object& a, const py::object& b) {
-        return s.space.distance(s.point(a, "a"), s.point(b, "b"));
+        // The planners' metric, summed without overflow: any finite configurations may come in here.
+        return (s.space.metricScale().array() * (s.point(a, "a") - s.point(b, "b")).array()).matrix().stableNorm();
       }, py::arg("a"), py::arg("b"), "weighted joint metric (thesis eq. 4.3)")
       .def("__repr__", [](const Scenario& s) {
         return "<svmp.Scenario '" + s.scenario.name + "' dof=" + std::to_string(s.scenario.robot->dof()) + ">";

@@ -132,6 +132,7 @@ def test_bad_plan_arguments_raise_value_error(fig35):
         fig35.check([1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match=r"q\[0\] is nan"):
         fig35.is_valid([np.nan, 2.0])
+    assert fig35.distance([3e200, 4e200], [0.0, 0.0]) == pytest.approx(5e200)  # no overflow to inf
     with pytest.raises(ValueError, match="seed is 3.5: expected an integer"):
         svmp.plan(fig35, "svmp", seed=3.5)
     with pytest.raises(ValueError, match=r"params\['prm.samples'\] = 100: planner 'prm' is not the planner run \('svmp'\)"):
