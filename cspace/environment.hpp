@@ -38,7 +38,8 @@ class Environment {
   // virtual obstacles keep theirs): one region of C-space. Obstacles that only overlap or touch, as
   // the pieces of a frame round a window, stay apart. "Inside": the shape's support points along the
   // 26 directions of the world's, its own and the other's axes (its corners, for a box) lie in the
-  // other shape, within 1e-9 of its size. Sweep over the x extents, so far-apart obstacles cost little.
+  // other shape, within 1e-9 of its size (exact where either is a box; a round shape in a round one
+  // may poke out by about 3% of its size). Sweep over the x extents, so far-apart obstacles cost little.
   std::vector<int> nestedGroups() const;
 
  private:

@@ -116,7 +116,7 @@ SvppOptions SvppOptions::resolvedFor(const cspace::ConfigurationSpace& space, in
   // refused.
   if (guide_spacing == kDerived)
     while (guideSampleBound(space, o.guide_spacing, o.guide_distance) > kMaxGuideSamples) o.guide_spacing *= 1.1;
-  if (step == kDerived)  // half the finest step a file may set, so rounding never refuses it
+  if (step == kDerived)  // twice the finest step a file may set, so rounding never refuses it
     o.step = std::max(o.step, 2 * (space.upper() - space.lower()).norm() / kMaxStepsPerDiagonal);
   return o;
 }

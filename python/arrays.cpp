@@ -44,9 +44,10 @@ double numberArgument(const py::handle& value, const std::string& name) {
 
 bool truthArgument(const py::handle& value, const std::string& name) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
-  if (py::hasattr(value, "dtype") && py::hasattr(value, "item")) {
-    try {
-      if (py::dtype::from_args(value.attr("dtype")).kind() == 'b') return value.attr("item")().cast<bool>();
+  if (py::hasattr(value, "dtype") && py::hasattr(value, "ndim") && py::hasattr(value, "item")) {
+    try {  // np.bool_ or a 0-d bool array, as integers take 0-d arrays
+      if (py::dtype::from_args(value.attr("dtype")).kind() == 'b' && value.attr("ndim").cast<int>() == 0)
+        return value.attr("item")().cast<bool>();
     } catch (const py::error_already_set&) {
     }
   }
@@ -54,12 +55,13 @@ bool truthArgument(const py::handle& value, const std::string& name) {
 }
 
 std::string pathArgument(const py::handle& value, const std::string& name) {
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::hasattr(value, "__fspath__")) {
-    const py::object path = value.attr("__fspath__")();
-    if (py::isinstance<py::str>(path)) return path.cast<std::string>();
+  PyObject* path = PyOS_FSPath(value.ptr());  // os.fspath: str, bytes, os.PathLike
+  if (!path) {
+    PyErr_Clear();
+    refuse(value, name, "expected a file name (str, bytes or os.PathLike)");
   }
-  refuse(value, name, "expected a file name (str or os.PathLike)");
+  const py::object text = py::reinterpret_steal<py::object>(path);
+  return text.cast<std::string>();  // str as UTF-8, bytes as they are
 }
 
 py::int_ integerValue(const py::handle& value, const std::string& name) {

@@ -25,9 +25,10 @@ DoubleArray checkedArray(const py::handle& object, const std::string& name, int 
 // a complex number): a ValueError naming the argument otherwise, not pybind11's TypeError that prints
 // every argument.
 double numberArgument(const py::handle& value, const std::string& name);
-// A truth argument: True, False or a NumPy bool; "no", 1 or None are a ValueError naming it.
+// A truth argument: True, False, a NumPy bool or a 0-d bool array; "no", 1 or None are a
+// ValueError naming it.
 bool truthArgument(const py::handle& value, const std::string& name);
-// A file name: a str or an os.PathLike giving one.
+// A file name, as os.fspath takes it: a str, bytes or an os.PathLike.
 std::string pathArgument(const py::handle& value, const std::string& name);
 // An integer argument, as Python's operator.index takes it (not a float, text or truth value).
 py::int_ integerValue(const py::handle& value, const std::string& name);

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <memory>
 #include <sstream>
+#include <typeinfo>
 
 #include "bench/experiments/experiment.hpp"
 #include "bench/experiments/scenario_check.hpp"
@@ -130,6 +131,7 @@ Plan plan(const Scenario& s, const std::string& planner, const py::object& seed_
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(inPythonTerms(e.what()));
   } catch (const std::runtime_error& e) {
+    if (typeid(e) != typeid(std::runtime_error)) throw;  // a subtype keeps its Python exception
     throw std::runtime_error(inPythonTerms(e.what()));
   }
   const planners::PlanResult& r = record.result;
@@ -138,6 +140,10 @@ Plan plan(const Scenario& s, const std::string& planner, const py::object& seed_
   out.status = planners::planStatusName(r.status);
   out.message = r.message;
   out.warnings = r.warnings;
+  // The run planned a copy of the scenario holding this one query, which its warnings call query 0.
+  const std::string as_run = "query 0's", as_asked = "query " + std::to_string(query) + "'s";
+  for (std::string& w : out.warnings)
+    for (size_t at = 0; (at = w.find(as_run, at)) != std::string::npos; at += as_asked.size()) w.replace(at, as_run.size(), as_asked);
   out.seed = static_cast<std::uint64_t>(seed);
   out.solved = r.solved();
   out.certified = r.certified;
@@ -188,8 +194,13 @@ void bindPlanning(py::module_& m) {
       .def("clearance", [](const Scenario& s, const py::object& q) { return s.checker->clearance(s.point(q, "q")); },
            py::arg("q"), "distance of the robot to the nearest real obstacle (0 in contact), exact to 1e-6")
       .def("distance", [](const Scenario& s, const py::object& a, const py::object& b) {
-        // The planners' metric, summed without overflow: any finite configurations may come in here.
-        return (s.space.metricScale().array() * (s.point(a, "a") - s.point(b, "b")).array()).matrix().stableNorm();
+        // The planners' metric (ConfigurationSpace::distance) on configurations scaled down by their
+        // largest entry first, so finite ones far outside the limits give a finite distance where
+        // one exists (1e200 overflowed to inf).
+        const Eigen::VectorXd p = s.point(a, "a"), q = s.point(b, "b");
+        const double m = std::max(p.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff());
+        if (!(m > 0)) return 0.0;
+        return m * (s.space.metricScale().array() * (p / m - q / m).array()).matrix().norm();
       }, py::arg("a"), py::arg("b"), "weighted joint metric (thesis eq. 4.3)")
       .def("__repr__", [](const Scenario& s) {
         return "<svmp.Scenario '" + s.scenario.name + "' dof=" + std::to_string(s.scenario.robot->dof()) + ">";

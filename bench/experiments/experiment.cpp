@@ -163,35 +163,32 @@ struct Proxy {
   // fail, which the user should know before blaming the planners.
   void warnOfClosedPassages(const cspace::Scenario& scenario, const planners::PlanningContext& exact,
                             const std::string& name, std::ostream& log) {
-    const auto warn = [&](const std::string& text) {
-      log << "svmp-plan: warning: " << text << "\n";
-      warnings.push_back(text);
-    };
     const cspace::ConfigurationSpace& space = exact.space;
+    query_warnings.assign(scenario.queries.size(), {});
     for (size_t i = 0; i < scenario.queries.size(); ++i) {
       const cspace::Query& query = scenario.queries[i];
-      long predicted = 0, tested = 0;  // free configurations the proxy predicts in collision
-      auto closes = [&](const Eigen::VectorXd& c) {  // a witness that collides is --check's
-        const bool closed = exact.checker.isValid(c) && !checker->isValid(c);
-        ++tested, predicted += closed;
-        return closed;
+      const auto warn = [&](const std::string& text) {
+        log << "svmp-plan: warning: " << text << "\n";
+        query_warnings[i].push_back(text);
       };
+      // A free configuration (a witness that collides is --check's) the proxy predicts in collision.
+      const auto closes = [&](const Eigen::VectorXd& c) { return exact.checker.isValid(c) && !checker->isValid(c); };
       // The ends, with or without a witness: a proxy that puts one in collision leaves no path.
       for (const auto& [end, which] : {std::pair{&query.start, "start"}, std::pair{&query.goal, "goal"}})
         if (closes(*end))
           warn(name + " predicts query " + std::to_string(i) + "'s " + which +
                " in collision (free on the exact checker): planning on it may fail");
       const std::vector<Eigen::VectorXd> path = query.witnessPath();
+      long predicted = 0, tested = 0;  // along the witness path, its ends left out
       Eigen::VectorXd c(space.dim());
       for (size_t k = 0; k + 1 < path.size(); ++k) {
         const double length = space.distance(path[k], path[k + 1]);
         const long parts = std::max(1L, static_cast<long>(std::ceil(length / scenario.resolution)));
-        for (long j = k == 0 ? 1 : 0; j < parts && tested < 1000000; ++j) {
+        for (long j = k == 0 ? 1 : 0; j < parts && tested < 1000000; ++j, ++tested) {
           space.interpolate(path[k], path[k + 1], static_cast<double>(j) / parts, c);
-          closes(c);
+          predicted += closes(c);
         }
       }
-      if (path.empty()) continue;
       if (predicted > 0)
         warn(name + " predicts " + std::to_string(predicted) + " of " + std::to_string(tested) +
              " configurations along query " + std::to_string(i) + "'s witness path (free on the exact checker) in "
@@ -200,7 +197,9 @@ struct Proxy {
   }
   std::unique_ptr<cspace::FastronChecker> checker;
   std::unique_ptr<cspace::DiscreteMotionValidator> validator;  // the thesis' sampled validator, on the proxy
-  std::vector<std::string> warnings;  // what every run on it is told (its JSON record, Plan.warnings)
+  // What the runs on it are told (their JSON records, Plan.warnings): every run, and query i's runs.
+  std::vector<std::string> warnings;
+  std::vector<std::vector<std::string>> query_warnings;
   std::vector<ParameterUse> parameters;
 };
 
@@ -396,8 +395,8 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
         record.raw_length = planners::pathLength(record.result.path, world.space);
         const size_t planner_warnings = record.result.warnings.size();  // the proxy's and smoothing's come after
         if (world.proxy)
-          record.result.warnings.insert(record.result.warnings.end(), world.proxy->warnings.begin(),
-                                        world.proxy->warnings.end());
+          for (const auto* told : {&world.proxy->warnings, &world.proxy->query_warnings[i]})
+            record.result.warnings.insert(record.result.warnings.end(), told->begin(), told->end());
         if (options.simplify && record.result.solved()) {
           const auto t1 = Clock::now();
           if (options.simplify_svm) {

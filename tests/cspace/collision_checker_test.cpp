@@ -128,10 +128,15 @@ TEST(CollisionCheckerTest, LowestIdWinsAndVirtualObstaclesMayBeTouched) {
 
 // Environment::nestedGroups: a shape given twice, a box inside a turned box, a sphere inside a box and
 // a chain of nested boxes join; the four boxes of a frame round a window, which overlap at its
-// corners, and a box that pokes out of another stay apart, as do virtual obstacles.
+// corners, a box that pokes out of another, a small box in a corner of a turned box's bounding box
+// but outside the box, and a sphere half out of another stay apart, as do virtual obstacles.
 TEST(EnvironmentTest, NestedObstaclesFormOneGroupAndAFramesPiecesDoNot) {
   Eigen::Isometry3d turned = at(5, 5);
   turned.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  // Just inside the corner of 3's bounding box nearest its lowest point: outside the turned box.
+  const Shape big = Shape::box(Eigen::Vector3d(2, 2, 2), turned);
+  const Eigen::Isometry3d corner = at(big.bounds().min().x() + 0.05, big.bounds().min().y() + 0.05,
+                                      big.bounds().min().z() + 0.05);
   const Environment env({
       obstacle(Shape::box(Eigen::Vector3d(1, 1, 1), at(0, 0))),              // 1
       obstacle(Shape::box(Eigen::Vector3d(1, 1, 1), at(0, 0))),              // 2: 1 again
@@ -147,8 +152,15 @@ TEST(EnvironmentTest, NestedObstaclesFormOneGroupAndAFramesPiecesDoNot) {
       obstacle(Shape::box(Eigen::Vector3d(0.5, 0.5, 0.5), at(0.1, 0)), true),  // 12: virtual, inside 1
       obstacle(Shape::box(Eigen::Vector3d(0.6, 0.6, 0.6), at(0.1, 0))),      // 13: inside 1
       obstacle(Shape::box(Eigen::Vector3d(0.3, 0.3, 0.3), at(0.15, 0))),     // 14: inside 13
+      obstacle(Shape::box(Eigen::Vector3d(0.05, 0.05, 0.05), corner)),         // 15: beside 3
+      obstacle(Shape::sphere(1, at(20, 0))),                                  // 16
+      obstacle(Shape::sphere(0.5, at(20.8, 0))),                              // 17: half out of 16
   });
-  EXPECT_EQ(env.nestedGroups(), (std::vector<int>{1, 1, 3, 3, 3, 6, 7, 8, 9, 10, 11, 12, 1, 1}));
+  EXPECT_EQ(env.nestedGroups(), (std::vector<int>{1, 1, 3, 3, 3, 6, 7, 8, 9, 10, 11, 12, 1, 1, 15, 16, 17}));
+  // The small box is in 3's bounding box, so only the test of the shapes keeps it apart.
+  const Eigen::AlignedBox3d bounds = env.byId(3).shape.bounds();
+  EXPECT_TRUE(bounds.contains(env.byId(15).shape.bounds()));
+  EXPECT_FALSE(env.byId(3).shape.contains(corner.translation()));
 }
 
 TEST(CollisionCheckerTest, JointLimitsComeFirst) {

@@ -213,8 +213,7 @@ TEST(InvalidQueries, WrongDimensionIsInvalidInput) {
 }
 
 // Obstacles one inside another are one class (Environment::nestedGroups): two walls, one of them
-// given three times and the other holding a smaller box, train the two classes two walls train,
-// each keeping the weight of its heaviest piece.
+// given three times and the other holding a smaller box, train the two classes two walls train.
 TEST(FewObstacles, SvmpLearnsNestedObstaclesAsOne) {
   auto w = makeWorld(
       "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"

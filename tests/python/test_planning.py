@@ -219,3 +219,20 @@ def test_a_proxy_that_did_not_converge_is_in_the_plans_warnings(fig35):
     plan = svmp.plan(fig35, "prm", checker="fastron-fk", params={"fastron-fk.max_updates": 1})
     assert any("fastron-fk stopped learning after 1 updates, not converged" in w for w in plan.warnings), plan.warnings
     assert not any("not converged" in w for w in svmp.plan(fig35, "prm", checker="fastron-fk").warnings)
+
+
+def test_a_proxys_warnings_name_the_query_asked_for(tmp_path):
+    """plan() runs a copy of the scenario holding the one query; its warnings still say which."""
+    path = tmp_path / "two_queries.yaml"
+    path.write_text(
+        "robot: {type: point, bounds: {lower: [0, 0], upper: [10, 10]}}\n"
+        "obstacles:\n"
+        "  - {name: lower, shape: box, size: [4.0, 6.0, 1.0], position: [5.0, 3.0, 0]}\n"
+        "  - {name: upper, shape: box, size: [4.0, 3.7, 1.0], position: [5.0, 8.15, 0]}\n"
+        "queries:\n"
+        "  - {start: [1.0, 9.5], goal: [9.0, 9.5]}\n"
+        "  - {start: [1.0, 5.0], goal: [9.0, 5.0], witness: [[2.5, 6.15], [7.5, 6.15]]}\n"
+        "resolution: 0.05\n")
+    plan = svmp.plan(svmp.load_scenario(path), "prm", query=1, checker="fastron-fk", time_limit=2)
+    assert any("along query 1's witness path" in w for w in plan.warnings), plan.warnings
+    assert not any("query 0's" in w for w in plan.warnings), plan.warnings
