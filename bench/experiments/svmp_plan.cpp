@@ -36,12 +36,16 @@ int main(int argc, char** argv) {
   try {
     if (!options.merge_files.empty()) {
       if (!options.json_path.empty()) experiments::checkWritable("--json", options.json_path);
+      for (const auto& shard : options.merge_files)  // a shard given twice is the merge's to refuse
+        experiments::checkDistinct({{"--merge", shard}, {"--json", options.json_path}});
       const auto merged = experiments::mergeShards(options.merge_files, options.scenario);
       experiments::printTable(merged.scenario, merged.options, merged.results, std::cout);
       if (!options.json_path.empty())
         experiments::writeJson(options.json_path, merged.scenario, merged.options, merged.results, merged.provenance);
       return 0;
     }
+    experiments::checkDistinct({{"--scenario", options.scenario}, {"--json", options.json_path},
+                                {"--paths", options.paths_json}, {"--ompl-log", options.ompl_log}});
     cspace::Scenario scenario = cspace::loadScenario(options.scenario);
     if (options.queries > 0) scenario.queries = experiments::randomQueries(scenario, options.queries, options.seed);
     if (options.check) {
