@@ -50,20 +50,24 @@ std::map<int, int> colourClasses(const Eigen::MatrixXd& points, const std::vecto
   const KdTree tree(static_cast<int>(scaled.rows()), cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   std::vector<int> stamp(label_of.size(), -1);
   std::vector<int> met;
-  std::vector<std::pair<int, int>> pairs;
+  std::vector<std::vector<int>> adjacent(classes);
   for (Eigen::Index i = 0; i < scaled.cols(); ++i) {
     met.clear();
     // Samples come grouped by obstacle, so each pair is noted about once per label (the sort below
-    // keeps it correct in any order).
+    // keeps it correct in any order). A pair is met from both sides (the distance is symmetric), so
+    // each side notes only the labels above its own.
     const int own = dense[static_cast<size_t>(i)];
     OtherLabels found{distance * distance, dense, own, stamp, met};
     tree.findNeighbors(found, scaled.col(i).data(), nanoflann::SearchParams(32, 0.0f, false));
-    for (int other : met) pairs.emplace_back(std::min(own, other), std::max(own, other));
+    for (int other : met)
+      if (other > own) adjacent[own].push_back(other), adjacent[other].push_back(own);
   }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  std::vector<std::vector<int>> adjacent(classes);
-  for (const auto& [a, b] : pairs) adjacent[a].push_back(b), adjacent[b].push_back(a);
+  // Each list sorted on its own: 2,250 obstacles of tinydust2d met 720k pairs, whose one global sort
+  // took most of the colouring.
+  for (std::vector<int>& a : adjacent) {
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+  }
   std::vector<int> order(classes);
   for (int c = 0; c < classes; ++c) order[c] = c;
   std::stable_sort(order.begin(), order.end(),

@@ -202,10 +202,16 @@ void LocalPlanner::answer(const cspace::Query& query, std::uint64_t seed, const 
                              : context_.checker.environment().byId(samples_.regions[i]).weight);
   svm::SolverOptions solver;
   solver.eps = options_.eps;
+  solver.stop = stop.asFunction();
   risk_.emplace(RiskFunction::trainBinary(samples_.points, labelling_.y, C, options_.sigma, solver,
                                           context_.space.metricScale(), true, &workspace_));
   result.support_vectors = risk_->model(0).numSupportVectors();
   result.times.training_ms += msSince(t0);
+  if (stop()) {
+    result.status = PlanStatus::kTimeout;
+    result.message = "time limit reached while training";
+    return;
+  }
   t0 = Clock::now();
   result.status = descend(query, stop, result);
   result.times.query_ms += msSince(t0);

@@ -208,7 +208,7 @@ bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Te
   return !samples_.stopped;
 }
 
-std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
+std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times, const Termination& stop) {
   if (samples_.size() == 0) throw std::logic_error("svmp: trainMultiSvm before sampleObstacle");
   const auto t0 = Clock::now();
   const cspace::Environment& env = context_.checker.environment();
@@ -228,6 +228,7 @@ std::string SvmpPlanner::trainMultiSvm(PhaseTimes& times) {
   svm::SolverOptions solver;
   solver.eps = options_.eps;
   solver.cache_mb = options_.cache_mb;
+  solver.stop = stop.asFunction();  // a solve the limit ends keeps its iterate; the build then times out
   // Every boundary sample, each obstacle's first sample (so no class is left without one) and an
   // evenly spread share of the interior ones (deterministic).
   std::vector<int> kept;
@@ -310,7 +311,7 @@ void SvmpPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, Plan
       nn_.emplace(roadmap_.nodes(), context_.space.metricScale());
       result.status = PlanStatus::kSolved;
       result.message.clear();
-    } else if (result.message = trainMultiSvm(times); !result.message.empty()) {
+    } else if (result.message = trainMultiSvm(times, stop); !result.message.empty()) {
       result.status = PlanStatus::kInvalidInput;
     } else if (stop()) {
       result.status = PlanStatus::kTimeout;

@@ -141,9 +141,10 @@ class SvmpPlanner final : public Planner {
   // The steps of build(), callable one by one; each adds its time to `times`. Out of order they throw
   // std::logic_error. sampleObstacle returns false when `stop` ended it; trainMultiSvm returns "" or
   // why it cannot train (fewer than two classes sampled; sampleObstacle adds the bounds as the second
-  // class, and buildRoadmap does not train with none).
+  // class, and buildRoadmap does not train with none); `stop` ends its solves where they are, and
+  // buildRoadmap then reports the time limit.
   bool sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Termination& stop = {});
-  std::string trainMultiSvm(PhaseTimes& times);
+  std::string trainMultiSvm(PhaseTimes& times, const Termination& stop = {});
   bool findBoundaryMilestones(PhaseTimes& times, const Termination& stop = {});
   bool makeRoadmap(PhaseTimes& times, const Termination& stop = {});
 

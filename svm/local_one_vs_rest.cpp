@@ -79,6 +79,10 @@ SolverResult solveFixedBias(const Eigen::MatrixXd& samples, const Eigen::VectorX
       r.status = SolverStatus::kIterationLimit;
       break;
     }
+    if (opt.stop && r.iterations % 1000 == 0 && r.iterations > 0 && opt.stop()) {
+      r.status = SolverStatus::kStopped;
+      break;
+    }
     ++r.iterations;
     const int i = worst.index % m;
     const double next = std::clamp(r.alpha[i] - kOverRelaxation * G[i], 0.0, C[i]);
@@ -174,7 +178,14 @@ OneVsRestModel trainOneVsRestLocal(const Eigen::MatrixXd& X, const std::vector<i
       Eigen::MatrixXd local(d, m);
       Eigen::VectorXd y(m), sample_C(m);
       for (int t = 0; t < m; ++t) local.col(t) = X.col(keep[t]), y[t] = y_all[keep[t]], sample_C[t] = C_all[keep[t]];
-      const SolverResult solved = solveFixedBias(local, y, sample_C, kernel.gamma, kLocalBias, opt);
+      SolverResult solved;
+      if (opt.stop && opt.stop()) {  // past the limit: the classes left stay untrained (alpha 0)
+        solved.alpha = Eigen::VectorXd::Zero(m);
+        solved.bias = kLocalBias;
+        solved.status = SolverStatus::kStopped;
+      } else {
+        solved = solveFixedBias(local, y, sample_C, kernel.gamma, kLocalBias, opt);
+      }
       out.models[c] = BinaryModel::fromSolution(local, y, solved, kernel);
       SolverResult& s = out.solutions[c];
       s = solved;

@@ -102,7 +102,12 @@ OneVsRestModel trainOneVsRest(const Eigen::MatrixXd& X, const std::vector<int>& 
     try {
       Eigen::VectorXd y, sample_C;
       oneVsRestProblem(labels, out.classes[c], C, class_weight, y, sample_C);
-      out.solutions[c] = solveBinary(X, y, sample_C, kernel, options, nullptr, &workspace, shared);
+      if (options.stop && options.stop()) {  // past the limit: the classes left stay untrained (alpha 0)
+        out.solutions[c].alpha = Eigen::VectorXd::Zero(X.cols());
+        out.solutions[c].status = SolverStatus::kStopped;
+      } else {
+        out.solutions[c] = solveBinary(X, y, sample_C, kernel, options, nullptr, &workspace, shared);
+      }
       out.solutions[c].workspace_solve = 0;  // the workspaces end here
       out.models[c] = BinaryModel::fromSolution(X, y, out.solutions[c], kernel);
     } catch (...) {

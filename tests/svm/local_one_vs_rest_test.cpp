@@ -160,3 +160,27 @@ TEST(LocalOneVsRest, BadInput) {
 
 }  // namespace
 }  // namespace svmp::svm
+
+namespace svmp::svm {
+namespace {
+
+// A time limit already past (SolverOptions::stop true) ends both trainings at once: every class
+// reports kStopped instead of training on (the local planner's 257 ms of training at a 50 ms limit).
+TEST(LocalOneVsRest, APassedLimitStopsEveryClassOfBothTrainings) {
+  const auto p = testing::makeBallProblem(3, 600, 4, 5);
+  const Kernel k = Kernel::rbfFromSigma(p.ball_radius / 2);
+  SolverOptions opt;
+  opt.stop = [] { return true; };
+  for (const OneVsRestModel& ovr : {trainOneVsRestLocal(p.X, p.labels, k, 10.0, {}, opt, 1),
+                                    trainOneVsRest(p.X, p.labels, k, 10.0, {}, opt, 2)})
+    for (const SolverResult& s : ovr.solutions) {
+      EXPECT_EQ(s.status, SolverStatus::kStopped);
+      EXPECT_EQ(s.alpha.size(), p.X.cols());
+    }
+  opt.stop = [] { return false; };
+  for (const SolverResult& s : trainOneVsRest(p.X, p.labels, k, 10.0, {}, opt, 1).solutions)
+    EXPECT_EQ(s.status, SolverStatus::kOptimal);
+}
+
+}  // namespace
+}  // namespace svmp::svm
