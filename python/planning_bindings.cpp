@@ -192,7 +192,8 @@ void bindPlanning(py::module_& m) {
            "of a real obstacle hit, -2 self-collision")
       .def("is_valid", [](const Scenario& s, const py::object& q) { return s.checker->isValid(s.point(q, "q")); }, py::arg("q"))
       .def("clearance", [](const Scenario& s, const py::object& q) { return s.checker->clearance(s.point(q, "q")); },
-           py::arg("q"), "distance of the robot to the nearest real obstacle (0 in contact), exact to 1e-6")
+           py::arg("q"), "distance of the robot to the nearest real obstacle (0 in contact), exact to 1e-6; "
+           "geometric, so also outside the joint limits, where check() gives -1")
       .def("distance", [](const Scenario& s, const py::object& a, const py::object& b) {
         // The planners' metric (ConfigurationSpace::distance) on configurations scaled down by their
         // largest entry first, so finite ones far outside the limits give a finite distance where
