@@ -173,6 +173,12 @@ FastronLearnStats FastronChecker::update(const ValidityChecker& exact, std::uint
   if (around.empty())
     for (size_t i = 0; i < support_q_.size(); ++i) around.push_back(static_cast<int>(i));
   const int support = static_cast<int>(around.size());
+  // More of them than samples: a random subset. In storage order the newest support points, those
+  // nearest the moved obstacle, come last, and a prefix would never perturb them (Fastron RBF keeps
+  // 2-3k support points against 1,000 samples).
+  if (support > options_.exploit_samples)
+    for (int i = 0; i < options_.exploit_samples; ++i)
+      std::swap(around[i], around[i + std::uniform_int_distribution<int>(0, support - 1 - i)(rng)]);
   for (int i = 0; support > 0 && i < options_.exploit_samples; ++i) {
     Eigen::VectorXd q = support_q_[around[i % support]];
     for (int k = 0; k < q.size(); ++k)

@@ -8,7 +8,8 @@
 // Learning (sec. III-B): train() labels uniform configurations with the exact checker and trains from
 // zero; update(), after the workspace changed, runs the two-stage active learning (Gaussian
 // perturbations of the support points in collision, the rarer class whose misses cost the TPR (all
-// support points when none is), then uniform exploration), relabels the support points and the
+// support points when none is; a random subset when there are more than samples), then uniform
+// exploration), relabels the support points and the
 // new samples with the exact checker and retrains starting from the previous weights. Extra
 // configurations (a planner's start and goal) can be added to either; a converged model classifies
 // every training point correctly.

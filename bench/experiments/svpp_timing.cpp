@@ -1,6 +1,7 @@
 // svpp-timing: the timing breakdown Miura reports for SVPP (IROS 2006, sec. III-C and IV-C), which
 // svmp-plan's per-run table cannot show: per problem, the patterns tried and the mean time of one SVM
-// (all patterns, and the patterns whose surface following reached the goal), the path generation time
+// (all patterns, and the patterns with a path: their surface following reached the goal and every
+// segment passed the motion validator, not through an obstacle), the path generation time
 // of those patterns, and the total planning time (Planner::solve with the certifier, as svmp-plan runs
 // it). Planner parameters come from each scenario's `planners.svpp` plus --set KEY=VALUE.
 // Usage: svpp-timing [--runs N] [--trials] [--set KEY=VALUE ...] FILE.yaml ...   (exit 2 on bad input;
@@ -126,7 +127,7 @@ int main(int argc, char** argv) {
                       << " SVs), path " << t.path_ms << " ms\n";
           p_all.add(t.svm_ms), all_svm.add(t.svm_ms);
           samples = t.samples.size();
-          if (!t.follow.reached()) continue;
+          if (!t.valid) continue;
           p_found_svm.add(t.svm_ms), found_svm.add(t.svm_ms);
           p_found_path.add(t.path_ms), found_path.add(t.path_ms);
         }

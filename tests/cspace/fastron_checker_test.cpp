@@ -1,9 +1,10 @@
 // The Fastron proxy checker (cspace/fastron_checker.hpp) against the exact FCL checker on a planar
 // 3-link arm with one box: held-out accuracy, every training point classified as labelled after
 // training and after an update that follows a move, batched predictions equal to one-by-one checks,
-// parameters with their errors.
+// the exploitation samples spread over the support in collision, parameters with their errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 #include <random>
 
@@ -108,6 +109,61 @@ TEST(FastronChecker, BatchEqualsOneByOne) {
   for (int i = 0; i < 100; ++i) EXPECT_EQ(batch[i], proxy.check(qs.col(i))) << i;
   EXPECT_EQ(batch[7], kJointLimitHit);
 
+}
+
+// Passes every check to `inner` and keeps the configurations asked, in order.
+class RecordingChecker final : public ValidityChecker {
+ public:
+  explicit RecordingChecker(const ValidityChecker& inner) : inner_(inner) {}
+  const robots::Robot& robot() const override { return inner_.robot(); }
+  const Environment& environment() const override { return inner_.environment(); }
+  int check(const Eigen::Ref<const Eigen::VectorXd>& q) const override {
+    asked.push_back(q);
+    return inner_.check(q);
+  }
+  int checkIncludingVirtual(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return check(q); }
+  bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override { return inner_.hits(q, id); }
+  double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return inner_.clearance(q); }
+  bool checksSelfCollision() const override { return false; }
+  std::uint64_t collisionChecks() const override { return asked.size(); }
+  mutable std::vector<Eigen::VectorXd> asked;
+
+ private:
+  const ValidityChecker& inner_;
+};
+
+// With more support points in collision than exploitation samples, each sample perturbs a different
+// one drawn at random, not the first ones in storage order (the oldest: the newest, nearest a moved
+// obstacle, would never be perturbed).
+TEST(FastronChecker, ExploitationPerturbsARandomSubsetOfTheSupportInCollision) {
+  const auto robot = arm();
+  const auto exact = boxAt(robot, 0.45, 0.2);
+  FastronCheckerOptions o = FastronCheckerOptions::defaults(FastronFeatures::kControlPoints);
+  o.initial_samples = 1500;
+  o.exploit_samples = 5;
+  o.exploit_sigma = 1e-9;  // each sample within 1e-8 of the support point it perturbs
+  o.explore_samples = 0;
+  FastronChecker proxy(robot, o);
+  proxy.train(*exact, 3);
+  const auto& support = proxy.supportConfigurations();
+  std::vector<Eigen::VectorXd> in_collision;  // in storage order
+  for (const auto& q : support)
+    if (!exact->isValid(q)) in_collision.push_back(q);
+  ASSERT_GT(in_collision.size(), 20u);
+  RecordingChecker recorder(*exact);
+  proxy.update(recorder, 4);
+  ASSERT_EQ(recorder.asked.size(), support.size() + 5);  // the support relabelled, then the samples
+  std::vector<size_t> perturbed;
+  for (size_t s = support.size(); s < recorder.asked.size(); ++s) {
+    size_t nearest = 0;
+    for (size_t i = 1; i < in_collision.size(); ++i)
+      if ((in_collision[i] - recorder.asked[s]).norm() < (in_collision[nearest] - recorder.asked[s]).norm()) nearest = i;
+    EXPECT_LT((in_collision[nearest] - recorder.asked[s]).norm(), 1e-6);
+    perturbed.push_back(nearest);
+  }
+  std::sort(perturbed.begin(), perturbed.end());
+  EXPECT_EQ(std::unique(perturbed.begin(), perturbed.end()), perturbed.end()) << "a support point perturbed twice";
+  EXPECT_GT(perturbed.back(), 4u) << "only the first five in storage order were perturbed";
 }
 
 TEST(FastronChecker, ParametersAreReadWithTheirBounds) {

@@ -3,7 +3,7 @@
 // function (truncated vs full evaluation, thesis ch. 4.3.1), k-nearest neighbours in the weighted metric
 // (a fixed set, and one growing as a repair grows it), one query on a built SVMP roadmap (many queries, `svmp-plan --queries`), a lazy query's repeated
 // searches, and the eager pass that connects a roadmap's milestones (node order, as the thesis, or
-// shortest pairs first).
+// shortest pairs first), and whole single queries of SVMP and PRM beside OMPL's planners (BM_Solve).
 // The world is thesis Fig 3.7 (bench/scenarios/thesis_fig3_7.yaml) or the 5-DoF arm of Fig 4.4; the
 // queries run on svpp_3d20_01 (a point among 20 boxes) and fastron_panda (the Panda).
 #include <benchmark/benchmark.h>
@@ -18,7 +18,9 @@
 #include "cspace/certified_motion_validator.hpp"
 #include "cspace/collision_checker.hpp"
 #include "planners/class_colouring.hpp"
+#include "planners/exact_setup.hpp"
 #include "planners/obstacle_sampler.hpp"
+#include "planners/planner_registry.hpp"
 #include "cspace/scenario/scenario.hpp"
 #include "bench/experiments/experiment.hpp"
 #include "planners/nearest_neighbors.hpp"
@@ -333,6 +335,58 @@ void BM_EagerPass(benchmark::State& state) {
   state.SetLabel(shortest_first ? "shortest first" : "node order");
 }
 BENCHMARK(BM_EagerPass)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Whole single queries as svmp-plan runs them (the exact setup: FCL checker, sampled validator,
+// certifier, repairer; the file's parameters), our planners beside OMPL's on the same checker, so
+// that scripts/bench_ratios pairs them run by run (`--ours svmp --rival ompl-rrtconnect`). Each
+// benchmark solves seeds 1-20 once: its time is the mean over svmp-plan's 20 seeds, less the time
+// the run spent counting (PlanResult::counting_ms), as svmp-plan reports it. solved_share counts
+// certified paths.
+void BM_Solve(benchmark::State& state, const char* file, const char* planner) {
+  struct Setup {
+    cspace::Scenario scenario;
+    planners::ExactSetup exact;
+    explicit Setup(const std::string& file)
+        : scenario(cspace::loadScenario(std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/" + file)), exact(scenario, 1) {}
+  };
+  static std::map<std::string, std::unique_ptr<Setup>> setups;
+  auto& setup = setups[file];
+  if (!setup) setup = std::make_unique<Setup>(file);
+  std::unique_ptr<planners::Planner> p;
+  try {
+    p = planners::makePlanner(planner, setup->exact.planning, setup->scenario.paramsFor(planner));
+  } catch (const std::exception& e) {  // OMPL's planners in a build without OMPL
+    state.SkipWithError(e.what());
+    return;
+  }
+  std::uint64_t seed = 0;
+  double solved = 0, checks = 0;
+  for (auto _ : state) {
+    const auto t0 = planners::Clock::now();
+    const planners::PlanResult r =
+        p->solve(setup->scenario.queries.front(), 1 + seed++ % 20, planners::Termination::after(60));
+    state.SetIterationTime((planners::msSince(t0) - r.counting_ms) / 1e3);
+    solved += r.solved();
+    checks += static_cast<double>(r.collision_checks);
+  }
+  state.counters["solved_share"] = solved / static_cast<double>(state.iterations());
+  state.counters["checks"] = checks / static_cast<double>(state.iterations());
+}
+#define SVMP_BM_SOLVE(file, planner)                                                    \
+  BENCHMARK_CAPTURE(BM_Solve, planner/file, #file ".yaml", #planner)->Iterations(20)    \
+      ->UseManualTime()->Unit(benchmark::kMillisecond)
+SVMP_BM_SOLVE(thesis_fig4_4, svmp);
+SVMP_BM_SOLVE(thesis_fig4_4, prm);
+SVMP_BM_SOLVE(thesis_fig4_4, ompl-rrtconnect);
+SVMP_BM_SOLVE(thesis_fig4_4, ompl-prm);
+SVMP_BM_SOLVE(forest_200, svmp);
+SVMP_BM_SOLVE(forest_200, prm);
+SVMP_BM_SOLVE(forest_200, ompl-rrtconnect);
+SVMP_BM_SOLVE(forest_200, ompl-prm);
+SVMP_BM_SOLVE(thesis_fig4_6, svmp);
+SVMP_BM_SOLVE(thesis_fig4_6, ompl-rrtconnect);
+SVMP_BM_SOLVE(thesis_fig4_10, svmp);
+SVMP_BM_SOLVE(thesis_fig4_10, ompl-rrtconnect);
 
 }  // namespace
 }  // namespace svmp
