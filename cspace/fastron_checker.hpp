@@ -12,7 +12,9 @@
 // exploration), relabels the support points and the
 // new samples with the exact checker and retrains starting from the previous weights. Extra
 // configurations (a planner's start and goal) can be added to either; a converged model classifies
-// every training point correctly.
+// every training point correctly, to rounding (training sums margins in double, queries in float, so a
+// point whose margin is within rounding of zero may flip; svmp-plan warns of a start or goal predicted
+// in collision).
 //
 // What the proxy answers: check() is the model's prediction (kPredictedHit when f > 0, limits tested
 // exactly); hits(), clearance() and everything per obstacle go to the exact checker of the last

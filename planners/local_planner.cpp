@@ -158,6 +158,11 @@ PlanStatus LocalPlanner::descend(const cspace::Query& query, const Termination& 
 
 void LocalPlanner::answer(const cspace::Query& query, std::uint64_t seed, const Termination& stop,
                           PlanResult& result) {
+  if (const std::string why = RiskFunction::unsupported(context_.space.dim()); !why.empty()) {
+    result.status = PlanStatus::kInvalidInput;
+    result.message = "local planner: " + why;
+    return;
+  }
   if ((query.goal - query.start).norm() < 1e-12) {  // no hyperplane is needed to stay put
     result.status = PlanStatus::kSolved;
     result.path = {query.start, query.goal};

@@ -11,6 +11,8 @@
 namespace svmp::planners {
 namespace {
 
+constexpr int kMaxDimensions = 32;  // joints, or control points of the FK kernel
+
 // Stack storage for per-call scaled coordinates and gradients: no allocation in the hot loop.
 using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 32, 1>;
 using FeatureVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 96, 1>;
@@ -41,14 +43,24 @@ Eigen::MatrixXd controlPointFeatures(const robots::Robot& robot, const Eigen::Ma
 
 }  // namespace
 
+std::string RiskFunction::unsupported(int dof, const robots::Robot* fk) {
+  if (dof > kMaxDimensions)
+    return "the risk function takes at most " + std::to_string(kMaxDimensions) + " joints; the robot has " +
+           std::to_string(dof);
+  if (fk && fk->numControlPoints() > kMaxDimensions)
+    return "the FK kernel takes at most " + std::to_string(kMaxDimensions) + " control points; the robot has " +
+           std::to_string(fk->numControlPoints());
+  return "";
+}
+
 RiskFunction::RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int> classes,
                            Eigen::VectorXd scale, bool truncated, const robots::Robot* fk)
     : models_(std::move(models)), classes_(std::move(classes)), scale_(std::move(scale)), fk_(fk) {
   if (models_.empty() || models_.size() != classes_.size())
     throw std::invalid_argument("risk function: need one model per class");
-  if (scale_.size() > 32) throw std::invalid_argument("risk function: at most 32 dimensions");
+  if (const std::string why = unsupported(static_cast<int>(scale_.size()), fk_); !why.empty())
+    throw std::invalid_argument("risk function: " + why);
   const long features = fk_ ? 3L * fk_->numControlPoints() : scale_.size();
-  if (features > 96) throw std::invalid_argument("risk function: at most 32 control points");
   for (const auto& m : models_)
     if (m.dim() != features)
       throw std::invalid_argument("risk function: model dimension differs from the features'");

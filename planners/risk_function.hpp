@@ -13,6 +13,7 @@
 // Thread safety: const methods may be called concurrently.
 #include <Eigen/Core>
 #include <map>
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -57,6 +58,11 @@ enum class OvrTraining { kFull, kNeighbourhood, kAuto };
 
 class RiskFunction {
  public:
+  // Why a risk function cannot be made for `dof` joints (or, with `fk`, that robot's control points):
+  // at most 32 of either (the fixed-size buffers of its evaluation); "" when it can. The planners on
+  // it report kInvalidInput with this message before any work.
+  static std::string unsupported(int dof, const robots::Robot* fk = nullptr);
+
   // `fk`: null for models on scaled joints; else the robot whose control points the models take.
   RiskFunction(std::vector<svm::BinaryModel> models, std::vector<int> classes, Eigen::VectorXd scale,
                bool truncated = true, const robots::Robot* fk = nullptr);

@@ -16,9 +16,11 @@
 
 namespace svmp::planners {
 
+constexpr double kMinSigma = 1e-9;  // sigma and fk_sigma: below it the kernel's gamma leaves the doubles
+
 SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   SvmpOptions o;
-  o.sigma = params.getDouble("sigma", o.sigma, 1e-9, 1e6);
+  o.sigma = params.getDouble("sigma", o.sigma, kMinSigma, 1e6);
   o.C = params.getDouble("C", o.C, 1e-9, 1e12);
   o.step = params.getDouble("step", o.step, 1e-9, 1e6);
   o.samples_per_tree = static_cast<int>(params.getInt("samples_per_tree", o.samples_per_tree, 1, 100000));
@@ -47,6 +49,9 @@ SvmpOptions SvmpOptions::fromParameters(const cspace::ParameterSet& params) {
   o.classes = params.getString("classes", o.classes, {"auto", "obstacle", "colour"});
   o.training = params.getString("training", o.training, {"auto", "full", "neighbourhood"});
   o.fk_sigma = params.getDouble("fk_sigma", o.fk_sigma, -1, 1e6);
+  if (o.fk_sigma > 0 && o.fk_sigma < kMinSigma)  // 1e-300 gave the kernel an infinite gamma
+    throw cspace::ScenarioError(params.describe("fk_sigma") + ": " + cspace::parameterText(o.fk_sigma) +
+                                " is neither <= 0 (derived from the robot's reach) nor at least 1e-09");
   return o;
 }
 
@@ -67,7 +72,8 @@ std::string SvmpOptions::validate() const {
     return "classes must be auto, obstacle or colour, got " + classes;
   if (training != "auto" && training != "full" && training != "neighbourhood")
     return "training must be auto, full or neighbourhood, got " + training;
-  if (!std::isfinite(fk_sigma)) return "fk_sigma must be finite";
+  if (!std::isfinite(fk_sigma) || (fk_sigma > 0 && fk_sigma < kMinSigma))
+    return "fk_sigma must be <= 0 (derived) or in [1e-09, 1e+06], got " + std::to_string(fk_sigma);
   if (!(interior_fraction >= 0 && interior_fraction <= 1))
     return "interior_fraction must be in [0, 1], got " + std::to_string(interior_fraction);
   return "";
@@ -300,6 +306,12 @@ bool SvmpPlanner::makeRoadmap(PhaseTimes& times, const Termination& stop) {
 
 void SvmpPlanner::buildRoadmap(std::uint64_t seed, const Termination& stop, PlanResult& result) {
   PhaseTimes& times = result.times;
+  const robots::Robot* fk = options_.kernel == "fk" ? &context_.checker.robot() : nullptr;
+  if (const std::string why = RiskFunction::unsupported(context_.space.dim(), fk); !why.empty()) {
+    result.status = PlanStatus::kInvalidInput;
+    result.message = "svmp: " + why;
+    return;
+  }
   result.status = PlanStatus::kTimeout;
   result.message = "time limit reached while sampling obstacles";
   if (sampleObstacle(seed, times, stop)) {

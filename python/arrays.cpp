@@ -61,7 +61,15 @@ std::string pathArgument(const py::handle& value, const std::string& name) {
     refuse(value, name, "expected a file name (str, bytes or os.PathLike)");
   }
   const py::object text = py::reinterpret_steal<py::object>(path);
-  return text.cast<std::string>();  // str as UTF-8, bytes as they are
+  // As open() encodes it: str in the file system's encoding (undecodable bytes kept by
+  // surrogateescape), bytes as they are; a NUL byte would cut the name short in C.
+  PyObject* encoded = nullptr;
+  if (!PyUnicode_FSConverter(text.ptr(), &encoded)) {
+    PyErr_Clear();
+    refuse(value, name, "a file name cannot hold a NUL byte");
+  }
+  const py::bytes bytes = py::reinterpret_steal<py::bytes>(encoded);
+  return bytes.cast<std::string>();
 }
 
 py::int_ integerValue(const py::handle& value, const std::string& name) {

@@ -113,18 +113,28 @@ void checkWritable(const std::string& flag, const std::string& given) {
   probeWrite(flag, "'" + file + "'", temporaryBeside(file));
 }
 
-void checkDistinct(const std::vector<std::pair<std::string, std::string>>& flag_files) {
+void checkDistinct(const std::vector<std::pair<std::string, std::string>>& flag_files,
+                   const std::vector<std::pair<std::string, std::string>>& flag_dirs) {
+  std::vector<std::pair<std::string, std::string>> all = flag_files;
+  all.insert(all.end(), flag_dirs.begin(), flag_dirs.end());
   std::vector<std::string> resolved;
-  for (const auto& [flag, file] : flag_files) {
+  for (const auto& [flag, file] : all) {
     std::error_code error;
     const std::string path = file.empty() ? "" : std::filesystem::weakly_canonical(followLinks(file), error).string();
     resolved.push_back(error ? file : path);
   }
-  for (size_t j = 0; j < flag_files.size(); ++j)
-    for (size_t i = 0; i < j; ++i)
-      if (!resolved[j].empty() && resolved[j] == resolved[i] && !isSpecial(resolved[j]))
-        throw std::runtime_error("flag " + flag_files[j].first + ": '" + flag_files[j].second + "' is also " +
-                                 flag_files[i].first + "'s file");
+  const auto fail = [&](size_t j, const std::string& what, size_t i) {
+    throw std::runtime_error("flag " + all[j].first + ": '" + all[j].second + "' " + what + " " + all[i].first +
+                             "'s file");
+  };
+  for (size_t j = 0; j < all.size(); ++j)
+    for (size_t i = 0; i < all.size(); ++i) {
+      if (i == j || resolved[j].empty() || resolved[i].empty() || isSpecial(resolved[i])) continue;
+      const bool i_is_file = i < flag_files.size();
+      if (i < j && resolved[j] == resolved[i] && (i_is_file || j < flag_files.size())) fail(j, "is also", i);
+      if (i_is_file && resolved[j].size() > resolved[i].size() && resolved[j].rfind(resolved[i] + "/", 0) == 0)
+        fail(j, "lies inside", i);
+    }
 }
 
 void makeDirectory(const std::string& flag, const std::string& dir) {

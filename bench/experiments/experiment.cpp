@@ -234,6 +234,21 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
     if (!parameters) continue;
     parameters->push_back(parameterUses(params, planners.back()->derivedParameters()));
   }
+  // The file's sections of planners and proxies this run does not use are read too: a typo or a bad
+  // value there is an error as anywhere in the file, not found only by the run that uses it.
+  const std::vector<std::string> registered = planners::plannerNames();
+  for (const auto& [name, section] : scenario.planner_params) {
+    if (std::find(options.planners.begin(), options.planners.end(), name) != options.planners.end() ||
+        name == options.checker)
+      continue;
+    if (std::find(registered.begin(), registered.end(), name) != registered.end()) {
+      planners::makePlanner(name, context, scenario.paramsFor(name));
+    } else if (cspace::isFastronCheckerName(name)) {
+      const cspace::ParameterSet params = scenario.paramsFor(name);
+      cspace::FastronCheckerOptions::fromParameters(name, params);
+      params.requireAllUsed();
+    }
+  }
   return planners;
 }
 

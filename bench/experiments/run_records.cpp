@@ -12,6 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <sys/stat.h>
+
 #include "bench/experiments/driver_options.hpp"
 #include "planners/planner_registry.hpp"
 
@@ -38,10 +40,17 @@ T get(const json& obj, const std::string& key, const std::string& where) {
   if (it == obj.end()) throw std::runtime_error(where + ": field '" + key + "' missing");
   if constexpr (std::is_same_v<T, double>)
     if (it->is_null()) return std::numeric_limits<double>::quiet_NaN();
-  // A count read from a negative number would wrap to 1.8e19 without a word.
-  if constexpr (std::is_unsigned_v<T> && !std::is_same_v<T, bool>)
-    if (!it->is_number_unsigned())
-      throw std::runtime_error(where + ": field '" + key + "' must be a non-negative integer, got " + it->dump());
+  // An integer read from a negative number, a fraction or one out of T's range would wrap or round
+  // without a word (a query 4294967296 read as 0, 0.9 as 0).
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    const bool fits = std::is_unsigned_v<T> ? it->is_number_unsigned() && it->get<std::uint64_t>() <= std::numeric_limits<T>::max()
+                                            : it->is_number_integer() && it->get<std::int64_t>() >= std::numeric_limits<T>::min() &&
+                                                  it->get<std::int64_t>() <= std::numeric_limits<T>::max();
+    if (!fits)
+      throw std::runtime_error(where + ": field '" + key + "' must be an integer in [" +
+                               std::to_string(std::is_unsigned_v<T> ? 0 : std::numeric_limits<T>::min()) + ", " +
+                               std::to_string(std::numeric_limits<T>::max()) + "], got " + it->dump());
+  }
   try {
     return it->get<T>();
   } catch (const json::exception&) {
@@ -83,10 +92,25 @@ RunRecord recordFromJson(const json& j, const std::string& where) {
   r.smoothness = get<double>(j, "smoothness", where);
   r.simplify_ms = get<double>(j, "simplify_ms", where);
   r.min_clearance = get<double>(j, "min_clearance", where);
+  // What svmp-plan never writes: a solved path it did not certify, a negative time.
+  if (p.status == planners::PlanStatus::kSolved && !p.certified)
+    throw std::runtime_error(where + ": status 'solved' but not certified (svmp-plan counts only certified paths)");
+  for (const auto& [name, ms] : {std::pair{"time_ms", r.time_ms}, {"build_ms", r.build_ms}, {"simplify_ms", r.simplify_ms}})
+    if (ms < 0) throw std::runtime_error(where + ": field '" + name + "' is negative: " + std::to_string(ms));
   return r;
 }
 
+// A shard far beyond what svmp-plan writes (about 1 kB a record) would take the parser's memory many
+// times over (a 240 MB file: 5.6 GB and rising); pipes and devices are no shards (/dev/zero never ends).
+constexpr std::uintmax_t kMaxShardBytes = 256u << 20;
+
 json readJsonFile(const std::string& file) {
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) throw std::runtime_error(file + ": cannot open: " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw std::runtime_error(file + ": not a regular file (a shard is svmp-plan's --json file)");
+  if (static_cast<std::uintmax_t>(st.st_size) > kMaxShardBytes)
+    throw std::runtime_error(file + ": " + std::to_string(st.st_size) + " bytes, more than a shard may have (" +
+                             std::to_string(kMaxShardBytes >> 20) + " MiB)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw std::runtime_error(file + ": cannot open: " + std::strerror(errno));
   std::ostringstream text;

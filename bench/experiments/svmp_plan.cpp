@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     experiments::checkDistinct({{"--scenario", options.scenario}, {"--json", options.json_path},
-                                {"--paths", options.paths_json}, {"--ompl-log", options.ompl_log}});
+                                {"--paths", options.paths_json}, {"--ompl-log", options.ompl_log}},
+                               {{"--svg", options.svg_dir}, {"--path-dir", options.paths_dir}});
     cspace::Scenario scenario = cspace::loadScenario(options.scenario);
     if (options.queries > 0) scenario.queries = experiments::randomQueries(scenario, options.queries, options.seed);
     if (options.check) {

@@ -292,7 +292,16 @@ TEST(DriverOutput, MergeRefusesShardsThatAreNotOneRun) {
       // Records are written compact ("key":value).
       {{variant("query.json", "\"query\":0,", "\"query\":1,")}, "query 1 is not one of the scenario's 1 queries"},
       {{variant("count.json", "\"collision_checks\":", "\"collision_checks\":-", "\"records\"")},
-       "must be a non-negative integer"},
+       "must be an integer in [0, "},
+      // Integers that would wrap or round (a query 4294967296 had been read as 0, 0.9 as 0).
+      {{variant("query_wraps.json", "\"query\":0,", "\"query\":4294967296,")}, "must be an integer in ["},
+      {{variant("query_fraction.json", "\"query\":0,", "\"query\":0.9,")}, "must be an integer in ["},
+      // What svmp-plan never writes: a solved record not certified, a negative time.
+      {{variant("uncertified.json", "\"status\":\"failed\"", "\"status\":\"solved\"", "\"records\"")},
+       "but not certified"},
+      {{variant("negative_time.json", "\"time_ms\":", "\"time_ms\":-", "\"records\"")}, "is negative"},
+      // Not a file at all (a pipe or /dev/zero would never end).
+      {{dir.string()}, "not a regular file"},
       {{variant("threads.json", "\"threads\": 1", "\"threads\": -7")}, "not svmp-plan's options"},
       {{variant("planner.json", "\"planner\": \"prm\"", "\"planner\": \"prn\"")}, "planner 'prn' is not one"},
       // Shards of other code: the second from another revision.

@@ -212,6 +212,24 @@ TEST(InvalidQueries, WrongDimensionIsInvalidInput) {
     EXPECT_EQ(w->planner(name)->solve(q, 1).status, PlanStatus::kInvalidInput) << name;
 }
 
+// A planar arm of 33 links: the risk function takes at most 32 joints, so svmp and the local planner
+// report invalid input (they had thrown, ending the whole run), while prm plans as on any arm.
+TEST(InvalidQueries, TooManyJointsForTheRiskFunctionIsInvalidInput) {
+  std::string lengths, zeros, goal;
+  for (int i = 0; i < 33; ++i) {
+    const std::string sep = i ? ", " : "";
+    lengths += sep + "0.1", zeros += sep + "0", goal += sep + (i ? "0" : "1.2");
+  }
+  auto w = makeWorld("robot: {type: planar_arm, lengths: [" + lengths + "], widths: 0.01}\n"
+                     "obstacles:\n  - {shape: box, size: [0.5, 0.5, 1], position: [2.5, 1.5, 0]}\n"
+                     "start: [" + zeros + "]\ngoal: [" + goal + "]\nresolution: 0.01\n");
+  for (const char* name : {"svmp", "local"}) {
+    const PlanResult r = w->planner(name)->solve(w->query(), 1);
+    EXPECT_EQ(r.status, PlanStatus::kInvalidInput) << name;
+    EXPECT_NE(r.message.find("at most 32 joints; the robot has 33"), std::string::npos) << name << ": " << r.message;
+  }
+}
+
 // Obstacles one inside another are one class (Environment::nestedGroups): two walls, one of them
 // given three times and the other holding a smaller box, train the two classes two walls train.
 TEST(FewObstacles, SvmpLearnsNestedObstaclesAsOne) {

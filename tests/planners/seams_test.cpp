@@ -209,5 +209,19 @@ TEST(Seams, RegistryDefaultsAreTheOptionStructsDefaults) {
                cspace::ScenarioError);
 }
 
+// A tiny fk_sigma gives the kernel an infinite gamma: refused when read, naming the field and value.
+TEST(Seams, ATinyFkSigmaIsRefusedWithItsField) {
+  try {
+    SvmpOptions::fromParameters(cspace::ParameterSet("t.yaml", "planners.svmp.", {{"fk_sigma", "1e-300"}}));
+    FAIL() << "fk_sigma 1e-300 accepted";
+  } catch (const cspace::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("planners.svmp.fk_sigma"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1e-300"), std::string::npos) << e.what();
+  }
+  for (const char* fine : {"-1", "0", "1e-09", "0.2"})
+    EXPECT_NO_THROW(SvmpOptions::fromParameters(cspace::ParameterSet("t.yaml", "planners.svmp.", {{"fk_sigma", fine}})))
+        << fine;
+}
+
 }  // namespace
 }  // namespace svmp::planners

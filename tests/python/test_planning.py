@@ -105,6 +105,12 @@ def test_bad_scenario_raises_with_the_loaders_message(tmp_path):
                    "start: [0.5, .nan]\ngoal: [0.9, 0.9]\nresolution: 0.01\n")
     with pytest.raises(ValueError, match=r"bad\.yaml.*start"):
         svmp.load_scenario(str(bad))
+    # A NUL byte had cut the name short in C: 'bad.yaml\0/x' loaded bad.yaml's neighbour silently.
+    with pytest.raises(ValueError, match="cannot hold a NUL byte"):
+        svmp.load_scenario(str(bad) + "\0/../other.yaml")
+    # A name not in UTF-8 reaches the file system as given (the loader names it), not as ''.
+    with pytest.raises(svmp.ScenarioError, match="cannot open"):
+        svmp.load_scenario(os.fsencode(str(tmp_path)) + b"/\xff.yaml")
 
 
 def test_bad_plan_arguments_raise_value_error(fig35):
