@@ -23,6 +23,8 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -31,6 +33,7 @@
 #include "bench/experiments/scenario_check.hpp"
 #include "bench/experiments/driver_options.hpp"
 #include "bench/experiments/ompl_log.hpp"
+#include "cspace/scenario/parameters.hpp"
 #include "cspace/scenario/scenario.hpp"
 #include "planners/ompl/scenario_setup.hpp"
 #include "planners/ompl/state_bridge.hpp"
@@ -145,6 +148,21 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
       for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
       throw std::invalid_argument("flag --set " + key + "=" + value + ": planner '" + name + "' has no parameter '" +
                                   param + "' (" + known + ")");
+    }
+    // OMPL's range for the parameter ("lo:hi" or "lo:step:hi"): setParam takes a value beyond it
+    // (FMT.num_samples=-1 wrapped to 4,294,967,295 samples and ran past the time limit).
+    const std::string range = planner->params()[param].getRangeSuggestion();
+    if (const size_t first = range.find(':'); first != std::string::npos) {
+      const auto number = [](const std::string& text, double& v) {
+        char* end = nullptr;
+        v = std::strtod(text.c_str(), &end);
+        return !text.empty() && end == text.c_str() + text.size() && std::isfinite(v);
+      };
+      double lo = 0, hi = 0, v = 0;
+      if (number(range.substr(0, first), lo) && number(range.substr(range.rfind(':') + 1), hi) && number(value, v) &&
+          !(v >= lo && v <= hi))
+        throw std::invalid_argument("flag --set " + key + "=" + value + ": outside OMPL's range for " + name + "." +
+                                    param + ", [" + cspace::parameterText(lo) + ", " + cspace::parameterText(hi) + "]");
     }
     bool set = false;
     try {  // OMPL's conversion of a real number throws past its own setValue
