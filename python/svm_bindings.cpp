@@ -83,13 +83,13 @@ Model train(const py::object& X_in, const py::object& y_in, const py::object& C_
       throw py::value_error("C" + (one_C ? "" : "[" + std::to_string(i) + "]") + " is " + numberText(C[i]) +
                             ": must be positive and finite");
   if (gamma && sigma) throw py::value_error("gamma and sigma: give one of them (gamma = 1 / (2 sigma^2))");
-  if (gamma && !(*gamma > 0 && std::isfinite(*gamma)))
-    throw py::value_error("gamma is " + numberText(*gamma) + ": must be positive and finite");
+  if (gamma && !(*gamma > 0 && *gamma <= svm::kMaxRbfGamma))
+    throw py::value_error("gamma is " + numberText(*gamma) + ": must be positive and at most 1e300");
   if (sigma && !(*sigma > 0 && std::isfinite(*sigma)))
     throw py::value_error("sigma is " + numberText(*sigma) + ": must be positive and finite");
-  if (const double g = sigma ? 1 / (2 * *sigma * *sigma) : 1; !(g > 0 && std::isfinite(g)))
+  if (const double g = sigma ? 1 / (2 * *sigma * *sigma) : 1; !(g > 0 && g <= svm::kMaxRbfGamma))
     throw py::value_error("sigma is " + numberText(*sigma) + ": gamma = 1 / (2 sigma^2) = " + numberText(g) +
-                          " is out of a double's range");
+                          " is beyond (0, 1e300]");
   const svm::Kernel kernel = sigma ? svm::Kernel::rbfFromSigma(*sigma) : svm::Kernel::rbf(gamma.value_or(1.0));
   svm::SolverOptions options;
   options.eps = numberArgument(eps, "eps");

@@ -32,9 +32,9 @@ Kernel Kernel::rbfFromSigma(double sigma) {
 }
 
 Kernel Kernel::rbf(double gamma) {
-  if (!(gamma > 0.0) || !std::isfinite(gamma)) {
+  if (!(gamma > 0.0 && gamma <= kMaxRbfGamma)) {  // beyond, the gradient's 2 gamma (x - q) overflows to NaN
     std::ostringstream msg;
-    msg << "Kernel::rbf: gamma must be positive and finite, got " << gamma;
+    msg << "Kernel::rbf: gamma must be positive and at most 1e300, got " << gamma;
     throw std::invalid_argument(msg.str());
   }
   Kernel k;

@@ -17,6 +17,9 @@ enum class KernelType { kLinear, kPolynomial, kRbf, kSigmoid, kRationalQuadratic
 
 const char* kernelTypeName(KernelType type);
 
+// The largest RBF gamma: beyond it the gradient's 2 gamma (x - q) overflows (1e308 gave NaN).
+inline constexpr double kMaxRbfGamma = 1e300;
+
 struct Kernel {
   KernelType type = KernelType::kRbf;
   // RBF: exp(-gamma |x-y|^2); rational quadratic: (1 + (gamma/2)|x-y|^2)^-2;
@@ -29,7 +32,7 @@ struct Kernel {
   int block = 0;
 
   static Kernel rbfFromSigma(double sigma);  // gamma = 1/(2 sigma^2); throws on sigma <= 0 or NaN
-  static Kernel rbf(double gamma);           // throws on gamma <= 0 or NaN
+  static Kernel rbf(double gamma);           // throws on gamma <= 0, NaN or past kMaxRbfGamma
   static Kernel blockSum(const Kernel& base, int block);
 
   // True for the plain RBF kernel, which has the vectorised and truncated fast paths.

@@ -112,6 +112,7 @@ def test_sigma_is_gamma_one_over_two_sigma_squared(two_rings):
     ({"max_iterations": 1e6}, "max_iterations is 1000000.0: expected an integer"),
     ({"max_iterations": True}, "max_iterations is True: expected an integer"),
     ({"gamma": 10**400}, "gamma is 1000.*: out of a double's range"),
+    ({"gamma": 1e308}, r"gamma is 1e\+308: must be positive and at most 1e300"),  # its gradient was NaN
     ({"gamma": np.bool_(True)}, "gamma is .*True.*: expected a real number"),
     ({"C": "2"}, "C is '2': give a positive number"),
     ({"C": True}, "C is True: give a positive number"),
