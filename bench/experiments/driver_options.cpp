@@ -69,9 +69,10 @@ std::vector<std::string> parsePlannerList(const std::string& text) {
   for (std::string name; std::getline(list, name, ',');) {
     if (std::find(names.begin(), names.end(), name) != names.end())
       throw std::invalid_argument("flag --planners: '" + name + "' listed twice");
-    if (!name.empty()) names.push_back(name);
+    if (name.empty()) throw std::invalid_argument("flag --planners: an empty name in '" + text + "'");
+    names.push_back(name);
   }
-  if (names.empty()) throw std::invalid_argument("flag --planners: empty list");
+  if (names.empty() || text.back() == ',') throw std::invalid_argument("flag --planners: an empty name in '" + text + "'");
   return names;
 }
 

@@ -37,8 +37,8 @@ struct DriverOptions {
   std::vector<std::string> merge_files;
 };
 
-// A comma-separated --planners value; throws std::invalid_argument for an empty list or a name
-// listed twice.
+// A comma-separated --planners value; throws std::invalid_argument for an empty list, an empty name
+// (svmp,,prm) or a name listed twice.
 std::vector<std::string> parsePlannerList(const std::string& text);
 // Adds PLANNER.KEY = VALUE to `options.overrides`; throws std::invalid_argument when the key is
 // already set (the last value would silently win).

@@ -228,7 +228,10 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
     std::vector<std::vector<ParameterUse>>* parameters = nullptr) {
   checkPlannerSections(scenario);
   std::vector<std::unique_ptr<planners::Planner>> planners;
+  const std::vector<std::string> registered = planners::plannerNames();
   for (const auto& name : options.planners) {
+    if (std::find(registered.begin(), registered.end(), name) == registered.end())
+      throw cspace::ScenarioError("flag --planners: " + planners::unknownPlanner(name));
     const cspace::ParameterSet params = parametersFor(name, scenario, options);
     planners.push_back(planners::makePlanner(name, context, params));
     if (!parameters) continue;
@@ -236,7 +239,6 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
   }
   // The file's sections of planners and proxies this run does not use are read too: a typo or a bad
   // value there is an error as anywhere in the file, not found only by the run that uses it.
-  const std::vector<std::string> registered = planners::plannerNames();
   for (const auto& [name, section] : scenario.planner_params) {
     if (std::find(options.planners.begin(), options.planners.end(), name) != options.planners.end() ||
         name == options.checker)
