@@ -73,7 +73,7 @@ std::string SvmpOptions::validate() const {
   if (training != "auto" && training != "full" && training != "neighbourhood")
     return "training must be auto, full or neighbourhood, got " + training;
   if (!std::isfinite(fk_sigma) || (fk_sigma > 0 && fk_sigma < kMinSigma))
-    return "fk_sigma must be <= 0 (derived) or in [1e-09, 1e+06], got " + std::to_string(fk_sigma);
+    return "fk_sigma must be finite, and <= 0 (derived) or at least 1e-09, got " + cspace::parameterText(fk_sigma);
   if (!(interior_fraction >= 0 && interior_fraction <= 1))
     return "interior_fraction must be in [0, 1], got " + std::to_string(interior_fraction);
   return "";

@@ -65,8 +65,10 @@ std::string pathArgument(const py::handle& value, const std::string& name) {
   // surrogateescape), bytes as they are; a NUL byte would cut the name short in C.
   PyObject* encoded = nullptr;
   if (!PyUnicode_FSConverter(text.ptr(), &encoded)) {
+    const bool unencodable = PyErr_ExceptionMatches(PyExc_UnicodeEncodeError);
     PyErr_Clear();
-    refuse(value, name, "a file name cannot hold a NUL byte");
+    refuse(value, name, unencodable ? "cannot be encoded in the file system's encoding"
+                                    : "a file name cannot hold a NUL byte");
   }
   const py::bytes bytes = py::reinterpret_steal<py::bytes>(encoded);
   return bytes.cast<std::string>();

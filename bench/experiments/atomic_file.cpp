@@ -120,7 +120,10 @@ void checkDistinct(const std::vector<std::pair<std::string, std::string>>& flag_
   std::vector<std::string> resolved;
   for (const auto& [flag, file] : all) {
     std::error_code error;
-    const std::string path = file.empty() ? "" : std::filesystem::weakly_canonical(followLinks(file), error).string();
+    // Absolute first: weakly_canonical leaves a relative name whose head does not exist as it is, and
+    // z.json would not meet ./z.json or /dir/z.json.
+    const std::string path =
+        file.empty() ? "" : std::filesystem::weakly_canonical(std::filesystem::absolute(followLinks(file)), error).string();
     resolved.push_back(error ? file : path);
   }
   const auto fail = [&](size_t j, const std::string& what, size_t i) {
@@ -131,8 +134,11 @@ void checkDistinct(const std::vector<std::pair<std::string, std::string>>& flag_
     for (size_t i = 0; i < all.size(); ++i) {
       if (i == j || resolved[j].empty() || resolved[i].empty() || isSpecial(resolved[i])) continue;
       const bool i_is_file = i < flag_files.size();
-      if (i < j && resolved[j] == resolved[i] && (i_is_file || j < flag_files.size())) fail(j, "is also", i);
-      if (i_is_file && resolved[j].size() > resolved[i].size() && resolved[j].rfind(resolved[i] + "/", 0) == 0)
+      if (i < j && i_is_file && resolved[j] == resolved[i]) fail(j, "is also", i);  // files come first
+      // A file that is already a directory (--json /tmp) is checkWritable's to refuse, and what lies in
+      // it (the scenario) is no clash.
+      if (i_is_file && resolved[j].size() > resolved[i].size() && resolved[j].rfind(resolved[i] + "/", 0) == 0 &&
+          !std::filesystem::is_directory(resolved[i]))
         fail(j, "lies inside", i);
     }
 }

@@ -19,7 +19,8 @@ void checkWritable(const std::string& flag, const std::string& file);
 // Throws std::runtime_error when two of the (flag, file) pairs name one file (after links; empty
 // names and devices such as /dev/null aside): an output over the scenario it reads, or over another;
 // when an output directory of `flag_dirs` is one of the files; or when a file or directory lies inside
-// one of the files (--ompl-log x.json/y.log with --json x.json). Run before anything is written.
+// one of the files that is not a directory yet (--ompl-log x.json/y.log with --json x.json). Run
+// before anything is written.
 void checkDistinct(const std::vector<std::pair<std::string, std::string>>& flag_files,
                    const std::vector<std::pair<std::string, std::string>>& flag_dirs = {});
 // Makes the folder `dir` (with its parents) for `flag` and tries a file in it; throws

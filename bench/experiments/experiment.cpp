@@ -230,8 +230,6 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
   std::vector<std::unique_ptr<planners::Planner>> planners;
   const std::vector<std::string> registered = planners::plannerNames();
   for (const auto& name : options.planners) {
-    if (std::find(registered.begin(), registered.end(), name) == registered.end())
-      throw cspace::ScenarioError("flag --planners: " + planners::unknownPlanner(name));
     const cspace::ParameterSet params = parametersFor(name, scenario, options);
     planners.push_back(planners::makePlanner(name, context, params));
     if (!parameters) continue;
@@ -252,6 +250,7 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
         // this problem (svpp's virtual samples for an arm of 8 joints) waits for a run of it.
         for (const auto& [key, value] : params.values())
           if (std::string(e.what()).find(params.describe(key)) != std::string::npos) throw;
+        params.requireAllUsed();  // the factory read every key it knows before it judged the problem
       }
     } else if (cspace::isFastronCheckerName(name)) {
       const cspace::ParameterSet params = scenario.paramsFor(name);
@@ -262,9 +261,14 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
   return planners;
 }
 
-// Every --set names a planner of --planners, the proxy checker of --checker or --simplify svpp's
-// smoothing; checked before the proxy learns (minutes on an arm).
-void checkOverrideTargets(const DriverOptions& options) {
+// Every name of --planners is a registered planner, and every --set names one of them, the proxy
+// checker of --checker or --simplify svpp's smoothing; checked before the proxy learns (minutes on an
+// arm).
+void checkPlannersAndOverrides(const DriverOptions& options) {
+  const std::vector<std::string> registered = planners::plannerNames();
+  for (const auto& name : options.planners)
+    if (std::find(registered.begin(), registered.end(), name) == registered.end())
+      throw cspace::ScenarioError("flag --planners: " + planners::unknownPlanner(name));
   for (const auto& [key, value] : options.overrides) {
     const std::string target = key.substr(0, key.find('.'));
     if (target == options.checker) continue;  // the proxy checker's own parameters
@@ -338,7 +342,7 @@ bool sharedBuild(const cspace::Scenario& scenario, const DriverOptions& options)
 }
 
 void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& options, std::ostream* out) {
-  checkOverrideTargets(options);
+  checkPlannersAndOverrides(options);
   std::ostringstream quiet;
   const World world(scenario, options, quiet);
   std::vector<std::vector<ParameterUse>> parameters;
@@ -355,7 +359,7 @@ void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& opt
 
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
                                        std::ostream& log) {
-  checkOverrideTargets(options);
+  checkPlannersAndOverrides(options);
   // Before the proxy learns: a bad smoothing parameter or robot must not wait for it.
   const auto smoothing_options = options.simplify_svm ? svmSmoothingOptions(scenario, options) : planners::SvppOptions();
   const World world(scenario, options, log);

@@ -23,7 +23,6 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -33,7 +32,6 @@
 #include "bench/experiments/scenario_check.hpp"
 #include "bench/experiments/driver_options.hpp"
 #include "bench/experiments/ompl_log.hpp"
-#include "cspace/scenario/parameters.hpp"
 #include "cspace/scenario/scenario.hpp"
 #include "planners/ompl/scenario_setup.hpp"
 #include "planners/ompl/state_bridge.hpp"
@@ -149,21 +147,15 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
       throw std::invalid_argument("flag --set " + key + "=" + value + ": planner '" + name + "' has no parameter '" +
                                   param + "' (" + known + ")");
     }
-    // OMPL's range for the parameter ("lo:hi" or "lo:step:hi"): setParam takes a value beyond it
-    // (FMT.num_samples=-1 wrapped to 4,294,967,295 samples and ran past the time limit).
+    // A negative value where OMPL's suggested range starts at 0 or above (a count, a distance, a
+    // factor): setParam takes it, and a count wraps (FMT.num_samples=-1 gave 4,294,967,295 samples
+    // and ran past the time limit). The range is a suggestion, so values above it stay allowed.
     const std::string range = planner->params()[param].getRangeSuggestion();
-    if (const size_t first = range.find(':'); first != std::string::npos) {
-      const auto number = [](const std::string& text, double& v) {
-        char* end = nullptr;
-        v = std::strtod(text.c_str(), &end);
-        return !text.empty() && end == text.c_str() + text.size() && std::isfinite(v);
-      };
-      double lo = 0, hi = 0, v = 0;
-      if (number(range.substr(0, first), lo) && number(range.substr(range.rfind(':') + 1), hi) && number(value, v) &&
-          !(v >= lo && v <= hi))
-        throw std::invalid_argument("flag --set " + key + "=" + value + ": outside OMPL's range for " + name + "." +
-                                    param + ", [" + cspace::parameterText(lo) + ", " + cspace::parameterText(hi) + "]");
-    }
+    char* end = nullptr;
+    const double lo = std::strtod(range.c_str(), &end), v = std::strtod(value.c_str(), nullptr);
+    if (end != range.c_str() && *end == ':' && lo >= 0 && v < 0)
+      throw std::invalid_argument("flag --set " + key + "=" + value + ": must not be negative (OMPL's range for " +
+                                  name + "." + param + " is " + range + ")");
     bool set = false;
     try {  // OMPL's conversion of a real number throws past its own setValue
       set = planner->params().setParam(param, value);

@@ -43,9 +43,11 @@ T get(const json& obj, const std::string& key, const std::string& where) {
   // An integer read from a negative number, a fraction or one out of T's range would wrap or round
   // without a word (a query 4294967296 read as 0, 0.9 as 0).
   if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
-    const bool fits = std::is_unsigned_v<T> ? it->is_number_unsigned() && it->get<std::uint64_t>() <= std::numeric_limits<T>::max()
-                                            : it->is_number_integer() && it->get<std::int64_t>() >= std::numeric_limits<T>::min() &&
-                                                  it->get<std::int64_t>() <= std::numeric_limits<T>::max();
+    // A non-negative integer is stored unsigned (read as int64 beyond 2^63 it would wrap negative).
+    const bool fits = it->is_number_unsigned()
+                          ? it->get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<T>::max())
+                          : !std::is_unsigned_v<T> && it->is_number_integer() &&
+                                it->get<std::int64_t>() >= static_cast<std::int64_t>(std::numeric_limits<T>::min());
     if (!fits)
       throw std::runtime_error(where + ": field '" + key + "' must be an integer in [" +
                                std::to_string(std::is_unsigned_v<T> ? 0 : std::numeric_limits<T>::min()) + ", " +
@@ -73,6 +75,9 @@ RunRecord recordFromJson(const json& j, const std::string& where) {
   p.local_planner_calls = get<std::uint64_t>(j, "local_planner_calls", where);
   p.distance_queries = get<std::uint64_t>(j, "distance_queries", where);
   p.repaired_stretches = get<int>(j, "repaired_stretches", where);
+  if (p.repaired_stretches < 0)
+    throw std::runtime_error(where + ": field 'repaired_stretches' must be a count, got " +
+                             std::to_string(p.repaired_stretches));
   p.exact_checks = get<std::uint64_t>(j, "exact_checks", where);
   p.milestones = get<std::uint64_t>(j, "milestones", where);
   p.roadmap_edges = get<std::uint64_t>(j, "roadmap_edges", where);

@@ -213,7 +213,7 @@ TEST(InvalidQueries, WrongDimensionIsInvalidInput) {
 }
 
 // A planar arm of 33 links: the risk function takes at most 32 joints, so svmp and the local planner
-// report invalid input (they had thrown, ending the whole run), while prm plans as on any arm.
+// report invalid input (they had thrown, ending the whole run), while prm takes the query.
 TEST(InvalidQueries, TooManyJointsForTheRiskFunctionIsInvalidInput) {
   std::string lengths, zeros, goal;
   for (int i = 0; i < 33; ++i) {
@@ -228,6 +228,7 @@ TEST(InvalidQueries, TooManyJointsForTheRiskFunctionIsInvalidInput) {
     EXPECT_EQ(r.status, PlanStatus::kInvalidInput) << name;
     EXPECT_NE(r.message.find("at most 32 joints; the robot has 33"), std::string::npos) << name << ": " << r.message;
   }
+  EXPECT_NE(w->planner("prm")->solve(w->query(), 1).status, PlanStatus::kInvalidInput);
 }
 
 // Obstacles one inside another are one class (Environment::nestedGroups): two walls, one of them

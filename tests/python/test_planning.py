@@ -108,6 +108,8 @@ def test_bad_scenario_raises_with_the_loaders_message(tmp_path):
     # A NUL byte had cut the name short in C: 'bad.yaml\0/x' loaded bad.yaml's neighbour silently.
     with pytest.raises(ValueError, match="cannot hold a NUL byte"):
         svmp.load_scenario(str(bad) + "\0/../other.yaml")
+    with pytest.raises(ValueError, match="cannot be encoded in the file system's encoding"):
+        svmp.load_scenario("a\ud800.yaml")  # a lone surrogate
     # A name not in UTF-8 reaches the file system as given (the loader names it), not as ''.
     with pytest.raises(svmp.ScenarioError, match="cannot open"):
         svmp.load_scenario(os.fsencode(str(tmp_path)) + b"/\xff.yaml")
