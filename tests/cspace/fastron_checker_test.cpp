@@ -11,6 +11,7 @@
 #include "cspace/collision_checker.hpp"
 #include "cspace/fastron_checker.hpp"
 #include "robots/planar_arm.hpp"
+#include "tests/cspace/recording_checker.hpp"
 
 namespace svmp::cspace {
 namespace {
@@ -111,27 +112,6 @@ TEST(FastronChecker, BatchEqualsOneByOne) {
 
 }
 
-// Passes every check to `inner` and keeps the configurations asked, in order.
-class RecordingChecker final : public ValidityChecker {
- public:
-  explicit RecordingChecker(const ValidityChecker& inner) : inner_(inner) {}
-  const robots::Robot& robot() const override { return inner_.robot(); }
-  const Environment& environment() const override { return inner_.environment(); }
-  int check(const Eigen::Ref<const Eigen::VectorXd>& q) const override {
-    asked.push_back(q);
-    return inner_.check(q);
-  }
-  int checkIncludingVirtual(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return check(q); }
-  bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override { return inner_.hits(q, id); }
-  double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return inner_.clearance(q); }
-  bool checksSelfCollision() const override { return false; }
-  std::uint64_t collisionChecks() const override { return asked.size(); }
-  mutable std::vector<Eigen::VectorXd> asked;
-
- private:
-  const ValidityChecker& inner_;
-};
-
 // With more support points in collision than exploitation samples, each sample perturbs a different
 // one drawn at random, not the first ones in storage order (the oldest: the newest, nearest a moved
 // obstacle, would never be perturbed).
@@ -150,7 +130,7 @@ TEST(FastronChecker, ExploitationPerturbsARandomSubsetOfTheSupportInCollision) {
   for (const auto& q : support)
     if (!exact->isValid(q)) in_collision.push_back(q);
   ASSERT_GT(in_collision.size(), 20u);
-  RecordingChecker recorder(*exact);
+  test::RecordingChecker recorder(*exact);
   proxy.update(recorder, 4);
   ASSERT_EQ(recorder.asked.size(), support.size() + 5);  // the support relabelled, then the samples
   std::vector<size_t> perturbed;

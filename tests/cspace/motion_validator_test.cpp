@@ -9,6 +9,7 @@
 #include "cspace/collision_checker.hpp"
 #include "cspace/motion_validator.hpp"
 #include "robots/point_robot.hpp"
+#include "tests/cspace/recording_checker.hpp"
 
 namespace svmp::cspace {
 namespace {
@@ -117,27 +118,6 @@ TEST(MotionValidatorTest, WallThinnerThanResolutionCanBeMissedThickerIsAlwaysCau
   }
 }
 
-// Records the x coordinate of every configuration it is asked about.
-class RecordingChecker final : public ValidityChecker {
- public:
-  explicit RecordingChecker(const ValidityChecker& inner) : inner_(inner) {}
-  const robots::Robot& robot() const override { return inner_.robot(); }
-  const Environment& environment() const override { return inner_.environment(); }
-  int check(const Eigen::Ref<const Eigen::VectorXd>& q) const override {
-    asked.push_back(q[0]);
-    return inner_.check(q);
-  }
-  int checkIncludingVirtual(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return inner_.checkIncludingVirtual(q); }
-  bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override { return inner_.hits(q, id); }
-  double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const override { return inner_.clearance(q); }
-  bool checksSelfCollision() const override { return false; }
-  std::uint64_t collisionChecks() const override { return asked.size(); }
-  mutable std::vector<double> asked;
-
- private:
-  const ValidityChecker& inner_;
-};
-
 // The bisection order by a queue of intervals: the midpoints of ever finer intervals, level by level.
 std::vector<std::int64_t> queueOrder(std::int64_t segments) {
   std::vector<std::int64_t> order;
@@ -159,7 +139,7 @@ std::vector<std::int64_t> queueOrder(std::int64_t segments) {
 // checks the same points in the same order as one, stopping at the same first collision.
 TEST(MotionValidatorTest, BisectionChecksInTheOrderOfAQueueOfIntervals) {
   WallWorld world(5, 0.1);
-  const RecordingChecker recording(world.checker);
+  const test::RecordingChecker recording(world.checker);
   for (std::int64_t segments = 1; segments <= 70; ++segments) {
     recording.asked.clear();
     // A free row (y = 9) from x = 1 to 9 cut into `segments` pieces.
@@ -168,17 +148,17 @@ TEST(MotionValidatorTest, BisectionChecksInTheOrderOfAQueueOfIntervals) {
     const std::vector<std::int64_t> expected = queueOrder(segments);
     ASSERT_EQ(recording.asked.size(), expected.size()) << segments;
     for (size_t k = 0; k < expected.size(); ++k)
-      EXPECT_NEAR(recording.asked[k], 1 + 8.0 * static_cast<double>(expected[k]) / segments, 1e-9)
+      EXPECT_NEAR(recording.asked[k][0], 1 + 8.0 * static_cast<double>(expected[k]) / segments, 1e-9)
           << segments << " pieces, check " << k;
   }
   // 8 pieces from x = 0.5 to 8.5 through a wall at x in [3.4, 3.6]: points 4, 2, 6, 1 are free, 3 is not.
   WallWorld wall(3.5, 0.2);
-  const RecordingChecker walled(wall.checker);
+  const test::RecordingChecker walled(wall.checker);
   const DiscreteMotionValidator through(walled, wall.space, 1.0);
   EXPECT_FALSE(through.isValid(Eigen::Vector2d(0.5, 5), Eigen::Vector2d(8.5 - 1e-9, 5)));
   ASSERT_EQ(walled.asked.size(), 5u);
   const double expected[] = {4.5, 2.5, 6.5, 1.5, 3.5};
-  for (size_t k = 0; k < 5; ++k) EXPECT_NEAR(walled.asked[k], expected[k], 1e-8) << k;
+  for (size_t k = 0; k < 5; ++k) EXPECT_NEAR(walled.asked[k][0], expected[k], 1e-8) << k;
 }
 
 // A free segment of 2^20 checks: the calling thread's stop scope ends its check at a poll, reporting
