@@ -221,22 +221,11 @@ struct World : planners::ExactSetup {
   const planners::PlanningContext context;
 };
 
-// The planners of --planners with the scenario's parameters and --set; `parameters` (when given) gets
-// each one's parameters as used.
-std::vector<std::unique_ptr<planners::Planner>> makePlanners(
-    const cspace::Scenario& scenario, const DriverOptions& options, const planners::PlanningContext& context,
-    std::vector<std::vector<ParameterUse>>* parameters = nullptr) {
-  checkPlannerSections(scenario);
-  std::vector<std::unique_ptr<planners::Planner>> planners;
+// The file's sections of planners and proxies this run does not use are read too: a typo or a bad
+// value there is an error as anywhere in the file, not found only by the run that uses it.
+void readSectionsNotRun(const cspace::Scenario& scenario, const DriverOptions& options,
+                        const planners::PlanningContext& context) {
   const std::vector<std::string> registered = planners::plannerNames();
-  for (const auto& name : options.planners) {
-    const cspace::ParameterSet params = parametersFor(name, scenario, options);
-    planners.push_back(planners::makePlanner(name, context, params));
-    if (!parameters) continue;
-    parameters->push_back(parameterUses(params, planners.back()->derivedParameters()));
-  }
-  // The file's sections of planners and proxies this run does not use are read too: a typo or a bad
-  // value there is an error as anywhere in the file, not found only by the run that uses it.
   for (const auto& [name, section] : scenario.planner_params) {
     if (std::find(options.planners.begin(), options.planners.end(), name) != options.planners.end() ||
         name == options.checker)
@@ -258,6 +247,22 @@ std::vector<std::unique_ptr<planners::Planner>> makePlanners(
       params.requireAllUsed();
     }
   }
+}
+
+// The planners of --planners with the scenario's parameters and --set; `parameters` (when given) gets
+// each one's parameters as used.
+std::vector<std::unique_ptr<planners::Planner>> makePlanners(
+    const cspace::Scenario& scenario, const DriverOptions& options, const planners::PlanningContext& context,
+    std::vector<std::vector<ParameterUse>>* parameters = nullptr) {
+  checkPlannerSections(scenario);
+  std::vector<std::unique_ptr<planners::Planner>> planners;
+  for (const auto& name : options.planners) {
+    const cspace::ParameterSet params = parametersFor(name, scenario, options);
+    planners.push_back(planners::makePlanner(name, context, params));
+    if (!parameters) continue;
+    parameters->push_back(parameterUses(params, planners.back()->derivedParameters()));
+  }
+  readSectionsNotRun(scenario, options, context);
   return planners;
 }
 
