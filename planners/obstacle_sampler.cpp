@@ -1,6 +1,7 @@
 #include "planners/obstacle_sampler.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <optional>
@@ -99,8 +100,9 @@ std::optional<Eigen::VectorXd> rootInBounds(const ValidityChecker& checker, cons
 // names the (lowest) obstacle a draw hits, so one draw serves whichever target it lands in, where a
 // search per target spends about 1/p draws on each (forest_200: 200 boxes of 0.09% of the space
 // each, about 220k checks). The search goes on while it keeps finding: it stops when every target
-// has a root or after 1000 + 2 x (draws up to the last new root) draws; a target it misses (inside
-// a lower-id obstacle, or rare) searches on its own in growTree.
+// has a root or after 1000 + 2 x (draws up to the last new root) draws. Then the motions known to be
+// blocked (options.blocked_motions) are walked; a target still without a root (inside a lower-id
+// obstacle, or rare) searches on its own in growTree.
 std::vector<std::optional<Eigen::VectorXd>> findRoots(const ValidityChecker& checker, const ConfigurationSpace& space,
                                                       const std::vector<const Obstacle*>& targets,
                                                       const ObstacleSamplerOptions& options, std::uint64_t seed) {
@@ -112,18 +114,31 @@ std::vector<std::optional<Eigen::VectorXd>> findRoots(const ValidityChecker& che
     if (target.id > 0) roots[t] = rootInBounds(checker, target, seed);
     if (!roots[t]) wanted[target.id] = t;
   }
-  if (wanted.size() < 2) return roots;  // nothing to share
-  Rng rng(seed ^ 0x0B57AC1E5EEDULL);
   Eigen::VectorXd q(space.dim());
-  long last_found = 0;
-  for (long a = 1; !wanted.empty() && a <= options.max_root_attempts && a <= 1000 + 2 * last_found; ++a) {
-    if (stopRequested(options, a)) break;
-    space.sampleUniform(rng, q);
-    const int hit = options.include_virtual ? checker.checkIncludingVirtual(q) : checker.check(q);
-    if (const auto it = wanted.find(hit); it != wanted.end()) {
-      roots[it->second] = q;
-      wanted.erase(it);
-      last_found = a;
+  const auto found = [&](int hit) {
+    const auto it = wanted.find(hit);
+    if (it == wanted.end()) return false;
+    roots[it->second] = q;
+    wanted.erase(it);
+    return true;
+  };
+  if (wanted.size() >= 2) {  // else nothing to share
+    Rng rng(seed ^ 0x0B57AC1E5EEDULL);
+    long last_found = 0;
+    for (long a = 1; !wanted.empty() && a <= options.max_root_attempts && a <= 1000 + 2 * last_found; ++a) {
+      if (stopRequested(options, a)) break;
+      space.sampleUniform(rng, q);
+      if (found(options.include_virtual ? checker.checkIncludingVirtual(q) : checker.check(q))) last_found = a;
+    }
+  }
+  // Then along the motions known to be blocked, a step apart (an obstacle thinner than the step is
+  // left to its own search, as its tree would pass over it).
+  for (const auto& [from, to] : options.blocked_motions) {
+    const double steps = std::ceil(space.distance(from, to) / options.step);
+    const int n = static_cast<int>(std::clamp(steps, 1.0, static_cast<double>(options.max_root_attempts)));
+    for (int i = 0; i <= n && !wanted.empty() && !stopRequested(options, i); ++i) {
+      space.interpolate(from, to, static_cast<double>(i) / n, q);
+      found(options.include_virtual ? checker.checkIncludingVirtual(q) : checker.check(q));
     }
   }
   return roots;

@@ -52,6 +52,11 @@ struct ObstacleSamplerOptions {
   // expansions (panda_shelf's self-collision tree: 6,232 expansions and 1,041 bisection checks for
   // its 400 nodes, against 470-690 expansions for each board's). 0 turns the limit off.
   int max_expansions_per_node = 8;
+  // Motions known to cross obstacles (a query's straight start-goal motion, checked before the
+  // build): obstacles the shared root search missed are looked for along each, a step apart (at most
+  // max_root_attempts checks), before their own uniform searches (a pebble across a 20-link arm's
+  // straight motion took 20,000 draws and a warning that asked for `sample:`).
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> blocked_motions;
   bool include_virtual = false;  // also sample virtual (guide) obstacles
   // Also grow a tree in the self-collision region (label kSelfCollisionHit): the thesis counts self
   // collision as a C-obstacle (IsMeetingConstraints inside IsCollidingWith, ch. 4.3.2). Only used when

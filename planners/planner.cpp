@@ -115,6 +115,7 @@ void Planner::certify(PlanResult& result, std::uint64_t seed, const Termination&
 
 PlanResult Planner::build(std::uint64_t seed, const Termination& stop) {
   clear();
+  blocked_motion_.reset();
   const cspace::MotionStopScope motion_stop(stop.asFunction());
   const CounterScope scope(context_);
   PlanResult result;
@@ -143,10 +144,12 @@ PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Term
   clear();
   const cspace::MotionStopScope motion_stop(stop.asFunction());
   straight_motion_blocked_ = false;
+  blocked_motion_.reset();
   const CounterScope scope(context_);
   PlanResult result;
   if (checkEndpoints(context_, q, result)) {
     straight_motion_blocked_ = triesStraightMotionFirst() && !straightMotionAnswers(context_, q, result);
+    if (straight_motion_blocked_) blocked_motion_ = q;
     // A limit that fires during the motion's check ends the run here, saying so (the check reports
     // the motion blocked), and a path it found stands.
     if (straight_motion_blocked_ && stop()) {

@@ -13,6 +13,7 @@
 // inside a call, never sharing mutable FCL objects, generators or scratch buffers between them.
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,9 @@ class Planner {
   // Set by solve() when the straight motion was tried before the build and failed: the query need
   // not try it again (it stays blocked, or unproven, on the same obstacles).
   bool straight_motion_blocked_ = false;
+  // That motion, for the build solve() then runs (it crosses an obstacle: SVMP looks for roots along
+  // it); empty in a build() for many queries.
+  std::optional<cspace::Query> blocked_motion_;
 
   PlanningContext context_;
 

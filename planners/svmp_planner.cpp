@@ -198,6 +198,7 @@ bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Te
   // Surfaces located to a quarter of the checking resolution: finer than any passage the motion
   // validator can tell apart, coarse enough to cost a few bisection checks per boundary node.
   opt.refine_tolerance = context_.validator.resolution() / 4;
+  if (blocked_motion_) opt.blocked_motions = {{blocked_motion_->start, blocked_motion_->goal}};
   opt.stop = stop.asFunction();
   samples_ = planners::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
   // Obstacles one inside another are one obstacle to learn: a shape given twice, or nested, as

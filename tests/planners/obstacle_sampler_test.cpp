@@ -255,6 +255,31 @@ TEST(ObstacleSampler, AThinTurnedRodsRootIsDrawnInItsOwnBox) {
   EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
 }
 
+// A pebble in the path of a 20-link arm stretched out: uniform draws almost never reach it (the arm
+// must lie nearly straight), but the blocked straight motion crosses it, and a root is found along
+// that motion instead of 20,000 draws and a warning.
+TEST(ObstacleSampler, ARootIsFoundAlongAMotionKnownToBeBlocked) {
+  std::string lengths, start, goal;
+  for (int i = 0; i < 20; ++i) {
+    const std::string sep = i ? ", " : "";
+    lengths += sep + "0.1", start += sep + "0.06", goal += sep + "-0.06";
+  }
+  auto w = makeWorld("robot: {type: planar_arm, lengths: [" + lengths + "], widths: 0.02}\n"
+                     "obstacles: [{name: pebble, shape: cylinder, radius: 0.05, length: 1, position: [1.95, 0]}]\n"
+                     "start: [" + start + "]\ngoal: [" + goal + "]\nresolution: 0.01\n");
+  planners::ObstacleSamplerOptions opt;
+  opt.samples_per_tree = 20;
+  opt.max_root_attempts = 2000;
+  const auto [blind, blind_checks] = sampleCountingChecks(*w, opt, 27);
+  ASSERT_EQ(blind.warnings.size(), 1u);  // the draws miss it
+  EXPECT_NE(blind.warnings[0].find("pebble"), std::string::npos) << blind.warnings[0];
+  opt.blocked_motions = {{w->query().start, w->query().goal}};
+  const auto [s, checks] = sampleCountingChecks(*w, opt, 27);
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  EXPECT_GT(s.size(), 1);
+  EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
+}
+
 // An arm has no configuration at a point, so its roots come from uniform draws: 32 small boxes on a
 // ring only the second link reaches. The shared search, naming the box each draw hits, costs less
 // than half of what the 32 boxes' own searches cost together (each measured alone in its own world).
