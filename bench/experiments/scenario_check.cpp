@@ -110,6 +110,15 @@ bool printScenarioCheck(const cspace::Scenario& scenario, std::ostream& out) {
         << ", so sampled motion checks may step through it (paths through it fail certification);"
         << " a resolution of at most " << scenario.resolution * width / step << " does not\n";
   }
+  // The file's bound (2^30 checks across the space) keeps one motion's check finite; a run checks
+  // thousands of motions, so a resolution far finer than the problem's features makes it slow (1e-9
+  // in half a unit square: about 25 minutes for prm) without being wrong.
+  constexpr double kManyChecksPerDiagonal = 1e6;
+  if (const double diagonal = space.distance(space.lower(), space.upper());
+      diagonal / scenario.resolution > kManyChecksPerDiagonal)
+    out << "warning    resolution " << scenario.resolution << ": a motion across the space takes "
+        << std::setprecision(3) << diagonal / scenario.resolution << std::setprecision(6)
+        << " collision checks, and a run checks many motions: it may be slow\n";
   const cspace::CertifiedMotionValidator certifier(checker, space, scenario.resolution);
   for (size_t i = 0; i < scenario.queries.size(); ++i) {
     const auto& q = scenario.queries[i];
