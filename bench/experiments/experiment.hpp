@@ -3,7 +3,7 @@
 // collision-free with the certified motion validator (a run is solved only when its path is), measures
 // every path the same way (length, minimum clearance at a quarter of the checking resolution, OMPL's
 // smoothness), optionally simplifies it, and reports the thesis-style table and the JSON described in
-// docs/architecture.md.
+// docs/architecture.md (experiment.cpp runs, experiment_output.cpp writes).
 #include <map>
 #include <ostream>
 #include <string>
@@ -50,6 +50,9 @@ void validatePlanners(const cspace::Scenario& scenario, const DriverOptions& opt
 // checker, start != goal (svmp-plan --queries). Throws cspace::ScenarioError when 1000 draws in a row
 // find no valid configuration.
 std::vector<cspace::Query> randomQueries(const cspace::Scenario& scenario, int count, std::uint64_t seed);
+
+// Several queries, or --queries (even one): one build per run answers them all.
+bool sharedBuild(const cspace::Scenario& scenario, const DriverOptions& options);
 
 // Throws cspace::ScenarioError for unknown planners or bad parameters (before any run starts).
 std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const DriverOptions& options,
