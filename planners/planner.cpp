@@ -129,7 +129,7 @@ PlanResult Planner::query(const cspace::Query& q, std::uint64_t seed, const Term
   if (!built_) throw std::logic_error(name() + ": query() before a successful build()");
   const cspace::MotionStopScope motion_stop(stop.asFunction());
   clearQuery();
-  straight_motion_blocked_ = false;
+  blocked_motion_.reset();
   const CounterScope scope(context_);
   PlanResult result;
   if (checkEndpoints(context_, q, result)) {
@@ -143,19 +143,17 @@ PlanResult Planner::query(const cspace::Query& q, std::uint64_t seed, const Term
 PlanResult Planner::solve(const cspace::Query& q, std::uint64_t seed, const Termination& stop) {
   clear();
   const cspace::MotionStopScope motion_stop(stop.asFunction());
-  straight_motion_blocked_ = false;
   blocked_motion_.reset();
   const CounterScope scope(context_);
   PlanResult result;
   if (checkEndpoints(context_, q, result)) {
-    straight_motion_blocked_ = triesStraightMotionFirst() && !straightMotionAnswers(context_, q, result);
-    if (straight_motion_blocked_) blocked_motion_ = q;
+    if (triesStraightMotionFirst() && !straightMotionAnswers(context_, q, result)) blocked_motion_ = q;
     // A limit that fires during the motion's check ends the run here, saying so (the check reports
     // the motion blocked), and a path it found stands.
-    if (straight_motion_blocked_ && stop()) {
+    if (blocked_motion_ && stop()) {
       result.status = PlanStatus::kTimeout;
       result.message = "time limit reached while checking the straight start-goal motion";
-    } else if (!result.solved() && straight_motion_blocked_ && answerBeforeBuild(q, seed, stop, result)) {
+    } else if (!result.solved() && blocked_motion_ && answerBeforeBuild(q, seed, stop, result)) {
       certify(result, seed, stop);  // proven already when solved; a no-op then
     } else if (!result.solved()) {
       buildRoadmap(seed, stop, result);

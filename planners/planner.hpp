@@ -106,11 +106,9 @@ class Planner {
   virtual bool answerBeforeBuild(const cspace::Query&, std::uint64_t, const Termination&, PlanResult&) {
     return false;
   }
-  // Set by solve() when the straight motion was tried before the build and failed: the query need
-  // not try it again (it stays blocked, or unproven, on the same obstacles).
-  bool straight_motion_blocked_ = false;
-  // That motion, for the build solve() then runs (it crosses an obstacle: SVMP looks for roots along
-  // it); empty in a build() for many queries.
+  // Set by solve() to its query when the straight motion was tried before the build and failed: the
+  // query need not try it again (it stays blocked, or unproven, on the same obstacles), and the build
+  // may look for obstacles along it (SVMP's roots). Empty in build() and query().
   std::optional<cspace::Query> blocked_motion_;
 
   PlanningContext context_;

@@ -76,7 +76,7 @@ void PrmPlanner::answer(const cspace::Query& query, std::uint64_t, const Termina
   const auto t0 = Clock::now();
   with_query_ = roadmap_;
   QueryOutcome outcome =
-      queryRoadmap(with_query_, *nn_, context_, query, options_.k, &roadmap_, !straight_motion_blocked_);
+      queryRoadmap(with_query_, *nn_, context_, query, options_.k, &roadmap_, !blocked_motion_);
   result.times.query_ms += msSince(t0);
   result.path = std::move(outcome.path);
   result.certified = outcome.certified;

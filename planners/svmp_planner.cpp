@@ -386,7 +386,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   RepairTrail trail;
   std::optional<Roadmap> before_repair;  // restored when the query fails (below)
   bool full_trees_tried = false;         // joinByTrees of lazy_trees samples, once per query
-  bool try_straight = !straight_motion_blocked_;
+  bool try_straight = !blocked_motion_;
   // A limit that has fired ends the query, saying after how many repair rounds.
   const auto timedOut = [&](int round) {
     if (!stop()) return false;
