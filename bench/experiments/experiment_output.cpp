@@ -94,6 +94,7 @@ void writeJson(const std::string& file, const cspace::Scenario& scenario, const 
     << ", \"started\": " << jsonString(provenance.started) << ", \"host\": " << jsonString(provenance.host)
     << ", \"cpu\": " << jsonString(provenance.cpu) << ", \"simd\": " << jsonString(provenance.simd) << ",\n  "
     << "\"scenario\": " << jsonString(scenario.name) << ", \"file\": " << jsonString(scenario.path)
+    << ", \"scenario_hash\": " << jsonString(scenario.content_hash)
     << ", \"dof\": " << scenario.robot->dof() << ", \"runs\": " << options.runs
     << ", \"queries\": " << scenario.queries.size() << ", \"seed\": " << options.seed
     << ", \"threads\": " << options.threads << ", \"time_limit\": " << options.time_limit

@@ -22,8 +22,12 @@ namespace {
 
 using nlohmann::json;
 
-// nlohmann writes NaN and infinities as null; read null back as NaN rather than failing the merge.
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+// JSON has no infinities or NaN: an infinity is written as the string "inf" or "-inf" (a path's
+// clearance with no obstacle in the scene), NaN as null; get<double> reads both back.
+json number(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return std::isnan(v) ? json(nullptr) : json(v);
+}
 
 planners::PlanStatus statusFromName(const std::string& name, const std::string& where) {
   using planners::PlanStatus;
@@ -38,8 +42,10 @@ template <class T>
 T get(const json& obj, const std::string& key, const std::string& where) {
   const auto it = obj.find(key);
   if (it == obj.end()) throw std::runtime_error(where + ": field '" + key + "' missing");
-  if constexpr (std::is_same_v<T, double>)
+  if constexpr (std::is_same_v<T, double>) {
     if (it->is_null()) return std::numeric_limits<double>::quiet_NaN();
+    if (*it == "inf" || *it == "-inf") return *it == "inf" ? HUGE_VAL : -HUGE_VAL;
+  }
   // An integer read from a negative number, a fraction or one out of T's range would wrap or round
   // without a word (a query 4294967296 read as 0, 0.9 as 0).
   if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
@@ -135,8 +141,8 @@ std::string listed(const std::set<std::string>& overrides) {
 }
 
 // The fields every shard of one merge must share (the seed and the number of runs are what differ).
-const char* const kSharedFields[] = {"scenario", "file", "dof", "queries", "random_queries", "threads",
-                                     "time_limit", "simplified", "simplifier", "checker"};
+const char* const kSharedFields[] = {"scenario", "file",       "scenario_hash", "dof",     "queries", "random_queries",
+                                     "threads",  "time_limit", "simplified",    "simplifier", "checker"};
 
 // What the shards of one merge add up to, one file at a time.
 struct ShardUnion {
@@ -328,6 +334,10 @@ MergedShards mergeShards(const std::vector<std::string>& files, const std::strin
       merged.scenario.robot->dof() != get<int>(first, "dof", files.front()))
     throw std::runtime_error(file + ": scenario '" + merged.scenario.name + "' is not the shards' scenario " +
                              first["scenario"].dump());
+  if (merged.scenario.content_hash != get<std::string>(first, "scenario_hash", files.front()))
+    throw std::runtime_error(file + ": has changed since the shards ran it (its hash is " +
+                             merged.scenario.content_hash + ", the shards' " + first["scenario_hash"].dump() +
+                             "); rerun the shards or pass the file they ran");
   DriverOptions& o = merged.options;
   o.scenario = file;
   for (const PlannerRuns& runs : results) o.planners.push_back(runs.planner);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -409,9 +410,19 @@ ParameterSet Scenario::paramsFor(const std::string& planner) const {
   return ParameterSet(path, "planners." + planner + ".", {});
 }
 
+static std::string contentHash(const std::string& text) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
 Scenario parseScenario(const std::string& yaml_text, const std::string& source) {
   try {
-    return parseScenarioUnguarded(yaml_text, source);
+    Scenario scenario = parseScenarioUnguarded(yaml_text, source);
+    scenario.content_hash = contentHash(yaml_text);
+    return scenario;
   } catch (const YAML::Exception& e) {
     // Last line of defence for a node kind the reader did not test first: still name the file and line.
     throw ScenarioError(source + ": line " + std::to_string(e.mark.line + 1) + ", column " +

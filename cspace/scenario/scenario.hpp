@@ -54,6 +54,9 @@ struct Query {
 
 struct Scenario {
   std::string path;
+  // FNV-1a 64 of the file's bytes, 16 hex digits: results name the exact problem they ran (--merge
+  // refuses shards of a file that has changed since).
+  std::string content_hash;
   std::string name;
   std::string description;
   std::shared_ptr<const robots::Robot> robot;

@@ -182,24 +182,29 @@ TEST(DriverOutput, APathTheSvmSmoothingKeepsSaysSoInItsRecord) {
 
 // With no obstacle at all every clearance is infinite, which JSON cannot hold: the statistics say
 // null, and the table says inf (they used to read "inf" and "-nan", and no JSON parser took the file).
-TEST(DriverOutput, InfiniteClearanceIsNullInTheJson) {
-  const Experiment run = runText(
-      "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\nobstacles: []\n"
-      "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n",
-      "svmp", 2);
+// A path with no obstacle in the scene has an infinite clearance. JSON has no infinity: the record
+// says "inf", the summary null, and --merge reads the record back as infinite (it had read null as NaN).
+TEST(DriverOutput, InfiniteClearanceIsValidJsonAndMergesBackInfinite) {
+  const std::string text_scenario =
+      "name: empty\nrobot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\nobstacles: []\n"
+      "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n";
+  const Experiment run = runText(text_scenario, "svmp", 2);
   ASSERT_EQ(run.results[0].solved(), 2);
-  const fs::path file = fs::temp_directory_path() / "svmp_driver_infinite_clearance_test.json";
+  const fs::path dir = fs::temp_directory_path() / "svmp_driver_infinite_clearance_test";
+  fs::create_directories(dir);
+  const fs::path file = dir / "run.json", scenario = dir / "empty.yaml";
+  std::ofstream(scenario) << text_scenario;
   writeJson(file.string(), run.scenario, run.options, run.results);
-  std::ifstream in(file);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(text.find("inf"), std::string::npos) << text;
-  EXPECT_EQ(text.find("nan"), std::string::npos) << text;
-  const YAML::Node clearance = YAML::LoadFile(file.string())["results"][0]["min_clearance"];
-  EXPECT_TRUE(clearance["mean"].IsNull());
-  EXPECT_EQ(clearance["n"].as<int>(), 2);
+  const YAML::Node json = YAML::LoadFile(file.string())["results"][0];
+  EXPECT_TRUE(json["min_clearance"]["mean"].IsNull());
+  EXPECT_EQ(json["min_clearance"]["n"].as<int>(), 2);
+  EXPECT_EQ(json["records"][0]["min_clearance"].as<std::string>(), "inf");
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_EQ(meanStd(statsOf({inf, inf}), 4), "inf");
-  fs::remove(file);
+  const MergedShards merged = mergeShards({file.string()}, scenario.string());
+  ASSERT_EQ(merged.results[0].runs.size(), 2u);
+  for (const RunRecord& r : merged.results[0].runs) EXPECT_EQ(r.min_clearance, inf);
+  fs::remove_all(dir);
 }
 
 #ifdef SVMP_WITH_OMPL
@@ -307,6 +312,8 @@ TEST(DriverOutput, MergeRefusesShardsThatAreNotOneRun) {
       // Shards of other code: the second from another revision.
       {{good, variant("revised.json", "\"revision\": \"", "\"revision\": \"x")},
        "shards of different code are not one run"},
+      // A scenario file that changed after the shards ran it.
+      {{variant("edited.json", "\"scenario_hash\": \"", "\"scenario_hash\": \"0")}, "has changed since the shards ran it"},
       // Shards whose planner ran with other parameters (the file's planners: section changed between them).
       {{good, variant("params.json", "\"parameters\": {", "\"parameters\": {\"zz\": \"1\", ")},
        "ran with other parameters"}};
