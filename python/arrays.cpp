@@ -92,9 +92,15 @@ long long integerArgument(const py::int_& value, const std::string& name, long l
 }
 
 DoubleArray checkedArray(const py::handle& object, const std::string& name, int ndim, long cols) {
-  // forcecast would drop an imaginary part with only NumPy's warning.
-  if (const py::array raw = py::array::ensure(object); raw && raw.dtype().kind() == 'c')
-    throw py::value_error(name + ": expected real numbers, got an array of complex numbers");
+  // forcecast would drop an imaginary part with only NumPy's warning, and read text ("1.5") and
+  // booleans as numbers, which the scalar arguments refuse.
+  if (const py::array raw = py::array::ensure(object); raw) {
+    const char kind = raw.dtype().kind();
+    if (kind == 'c') throw py::value_error(name + ": expected real numbers, got an array of complex numbers");
+    if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'O')
+      throw py::value_error(name + ": expected an array of numbers, got one of dtype " +
+                            std::string(py::str(raw.dtype())));
+  }
   DoubleArray a = DoubleArray::ensure(object);
   if (!a) throw py::value_error(name + ": expected an array of numbers, got " + std::string(py::str(py::type::of(object))));
   const std::string shape = ndim == 2 ? "(n, " + (cols >= 0 ? std::to_string(cols) : std::string("d")) + ")"

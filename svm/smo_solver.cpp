@@ -538,7 +538,7 @@ SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
   validateProblem(X, y, C, kernel, opt);
   if (shared != nullptr && !shared->matches(X, kernel)) fail("shared columns of other samples or another kernel");
   if (warm != nullptr)
-    if (const std::string w = warm->validate(X.cols(), X.rows()); !w.empty()) fail(w);
+    if (const std::string w = warm->validate(X.cols(), X.rows(), kernel); !w.empty()) fail(w);
   RetainedLayout layout;
   std::unique_ptr<KernelCache> cache;
   if (workspace != nullptr) {
@@ -572,7 +572,7 @@ SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
 }
 
 WarmStart makeWarmStart(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
-                        const Eigen::VectorXd& C, const SolverResult& previous,
+                        const Eigen::VectorXd& C, const Kernel& kernel, const SolverResult& previous,
                         std::vector<Eigen::Index> previous_index) {
   if (previous.status == SolverStatus::kStopped)
     throw std::invalid_argument("warm start: the previous solve was stopped (it has no gradient)");
@@ -583,6 +583,7 @@ WarmStart makeWarmStart(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
   w.alpha = previous.alpha;
   w.gradient = previous.gradient;
   w.gradient_bound = previous.gradient_bound;
+  w.kernel = kernel;
   w.previous_index = std::move(previous_index);
   w.workspace_solve = previous.workspace_solve;
   return w;

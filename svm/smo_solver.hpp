@@ -81,10 +81,10 @@ SolverResult solveBinary(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
                          const WarmStart* warm = nullptr, SolverWorkspace* workspace = nullptr,
                          SharedColumns* shared = nullptr);
 
-// Warm start for a new problem from the previous problem (X, y, C) and its solution.
+// Warm start for a new problem from the previous problem (X, y, C, kernel) and its solution.
 // previous_index[i] is the previous index of new sample i, or -1 for an added sample.
 WarmStart makeWarmStart(const Eigen::MatrixXd& X, const Eigen::VectorXd& y,
-                        const Eigen::VectorXd& C, const SolverResult& previous,
+                        const Eigen::VectorXd& C, const Kernel& kernel, const SolverResult& previous,
                         std::vector<Eigen::Index> previous_index);
 
 }  // namespace svmp::svm

@@ -7,16 +7,33 @@
 
 namespace svmp::svm {
 
-std::string WarmStart::validate(Eigen::Index n, Eigen::Index d) const {
+std::string WarmStart::validate(Eigen::Index n, Eigen::Index d, const Kernel& new_kernel) const {
   std::ostringstream msg;
   const Eigen::Index m = X.cols();
-  if (X.rows() != d && m > 0) {
+  // The first previous sample whose values no solve gives, or -1.
+  const auto badValue = [&]() -> Eigen::Index {
+    for (Eigen::Index p = 0; p < m; ++p)
+      if (!X.col(p).allFinite() || (y[p] != 1 && y[p] != -1) || !(C[p] > 0 && std::isfinite(C[p])) ||
+          !(alpha[p] >= 0 && alpha[p] <= C[p]) || !std::isfinite(gradient[p]) || !std::isfinite(gradient_bound[p]))
+        return p;
+    return -1;
+  };
+  if (!(kernel == new_kernel)) {
+    msg << "warm start: the previous solution is of another kernel (" << kernelTypeName(kernel.type) << ", gamma "
+        << kernel.gamma << "; now " << kernelTypeName(new_kernel.type) << ", gamma " << new_kernel.gamma
+        << "), whose gradient does not hold for this one: solve without it";
+  } else if (X.rows() != d && m > 0) {
     msg << "warm start: previous samples have dimension " << X.rows() << ", new ones " << d;
   } else if (y.size() != m || C.size() != m || alpha.size() != m || gradient.size() != m ||
              gradient_bound.size() != m) {
     msg << "warm start: previous X has " << m << " samples but y/C/alpha/gradient/gradient_bound "
         << "have " << y.size() << "/" << C.size() << "/" << alpha.size() << "/" << gradient.size()
         << "/" << gradient_bound.size();
+  } else if (const Eigen::Index p = badValue(); p >= 0) {
+    msg << "warm start: previous sample " << p << " has y " << y[p] << ", C " << C[p] << ", alpha " << alpha[p]
+        << ", gradient " << gradient[p] << ", gradient_bound " << gradient_bound[p]
+        << (X.col(p).allFinite() ? "" : ", coordinates not finite")
+        << " (a solve gives labels +-1, 0 <= alpha <= C and finite values)";
   } else if (static_cast<Eigen::Index>(previous_index.size()) != n) {
     msg << "warm start: previous_index has " << previous_index.size() << " entries for " << n
         << " new samples";

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "svm/kernel.hpp"
 #include "svm/kernel_column.hpp"
 
 namespace svmp::svm {
@@ -25,6 +26,9 @@ struct WarmStart {
   Eigen::VectorXd alpha;
   Eigen::VectorXd gradient;
   Eigen::VectorXd gradient_bound;
+  // The previous problem's kernel: its gradient holds for that kernel only (a start from another
+  // one ended "optimal" far from the optimum).
+  Kernel kernel;
   // One entry per NEW sample: the index of the previous sample it continues, or -1 if it is new.
   // A continued sample whose coordinates differ is "moved"; previous samples nobody continues are
   // "removed". Coordinates are compared exactly, so callers need not list moved samples.
@@ -33,8 +37,10 @@ struct WarmStart {
   // keeps its kernel columns for this one.
   long long workspace_solve = 0;
 
-  // "" when consistent with a new problem of n samples in dimension d, else what is wrong.
-  std::string validate(Eigen::Index n, Eigen::Index d) const;
+  // "" when consistent with a new problem of n samples in dimension d with `kernel`, else what is
+  // wrong: sizes and indices, and values no solve gives (labels not +-1, multipliers outside
+  // [0, C], anything not finite), which the solver would take as a start and end "optimal" from.
+  std::string validate(Eigen::Index n, Eigen::Index d, const Kernel& new_kernel) const;
 };
 
 struct WarmStartCounts {

@@ -145,6 +145,13 @@ def test_bad_arrays_raise_value_error(two_rings, model):
         svmp.train(X, np.ones(len(X)))
     with pytest.raises(ValueError, match="X: expected real numbers, got an array of complex numbers"):
         svmp.train(X + 1j, y)
+    # Text and booleans are not numbers here, as they are not for the scalar arguments.
+    with pytest.raises(ValueError, match="X: expected an array of numbers, got one of dtype <U"):
+        svmp.train(X.astype(str), y)
+    with pytest.raises(ValueError, match="y: expected an array of numbers, got one of dtype <U"):
+        svmp.train(X, y.astype(str))
+    with pytest.raises(ValueError, match="X: expected an array of numbers, got one of dtype bool"):
+        svmp.train(X > 0, y)
 
 
 def test_numbers_of_any_numeric_kind_are_arguments(two_rings):

@@ -144,5 +144,13 @@ TEST(KernelCache, KeepsColumnsAcrossSwapsAndEvicts) {
   EXPECT_GT(cache.misses(), 3);
 }
 
+// A size beyond any memory is as large as a cache gets, not the least: 1e308 MB had overflowed the
+// conversion to a count of floats and left room for two columns.
+TEST(KernelCache, AHugeSizeIsTheLargestCache) {
+  EXPECT_EQ(KernelCache(4, 0.0).capacityFloats(), 8);
+  EXPECT_EQ(KernelCache(4, 1.0).capacityFloats(), (1 << 20) / 4);
+  for (const double mb : {1e13, 1e300, 1e308}) EXPECT_EQ(KernelCache(4, mb).capacityFloats(), 1LL << 60) << mb;
+}
+
 }  // namespace
 }  // namespace svmp::svm

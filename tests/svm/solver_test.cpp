@@ -165,7 +165,8 @@ TEST(Solver, AStopEndsTheSolve) {
   EXPECT_EQ(r.alpha.size(), 3000);
   EXPECT_EQ(r.gradient.size(), 0);
   EXPECT_TRUE(std::isnan(r.objective));
-  EXPECT_THROW(makeWarmStart(p.X, p.binary(), C, r, {}), std::invalid_argument);
+  EXPECT_THROW(makeWarmStart(p.X, p.binary(), C, Kernel::rbfFromSigma(sigmaFor(p)), r, {}),
+               std::invalid_argument);
 }
 
 TEST(Solver, IterationLimitIsReported) {

@@ -1,3 +1,4 @@
+#include <numeric>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -77,7 +78,7 @@ TEST(WarmStart, ReachesTheColdObjective) {
     const SolverResult first = solveBinary(p.X, y, C, k, opt);
     const Edited e = edit(p, 40 + d, y, 0.05, 99 + d);
     const Eigen::VectorXd C2 = Eigen::VectorXd::Constant(e.y.size(), 10.0);
-    const WarmStart warm = makeWarmStart(p.X, y, C, first, e.previous_index);
+    const WarmStart warm = makeWarmStart(p.X, y, C, k, first, e.previous_index);
     SolverOptions tight = opt;
     tight.eps = 1e-5;  // both well inside 1e-6 relative of the true optimum
     const SolverResult cold = solveBinary(e.X, e.y, C2, k, tight);
@@ -147,7 +148,7 @@ TEST(WarmStart, WorkspaceKeepsColumnsAndReachesTheSameOptimum) {
       SolverWorkspace workspace;
       const SolverResult first = solveBinary(p.X, y, C, k, opt, nullptr, &workspace);
       EXPECT_EQ(first.workspace_solve, workspace.lastSolve());
-      const WarmStart warm = makeWarmStart(p.X, y, C, first, e.previous_index);
+      const WarmStart warm = makeWarmStart(p.X, y, C, k, first, e.previous_index);
       const Eigen::VectorXd C2 = Eigen::VectorXd::Constant(e.y.size(), 10.0);
       const SolverResult plain = solveBinary(e.X, e.y, C2, k, opt, &warm);
       const SolverResult kept = solveBinary(e.X, e.y, C2, k, opt, &warm, &workspace);
@@ -192,8 +193,8 @@ TEST(WarmStart, InitialGradientIsExact) {
   // New C (lower for some samples): clipping changes multipliers of kept samples too.
   Eigen::VectorXd C2 = Eigen::VectorXd::Constant(e.y.size(), 10.0);
   for (Eigen::Index i = 0; i < C2.size(); i += 7) C2[i] = 4.0;
-  const WarmStart warm = makeWarmStart(p.X, y, C, first, e.previous_index);
-  ASSERT_EQ(warm.validate(e.X.cols(), e.X.rows()), "");
+  const WarmStart warm = makeWarmStart(p.X, y, C, k, first, e.previous_index);
+  ASSERT_EQ(warm.validate(e.X.cols(), e.X.rows(), k), "");
   KernelColumns data(e.X, k);
   Eigen::VectorXd alpha, G, G_bar;
   const WarmStartCounts counts =
@@ -220,7 +221,7 @@ TEST(WarmStart, UnchangedProblemNeedsNoIterations) {
   const SolverResult first = solveBinary(p.X, y, C, k, {});
   std::vector<Eigen::Index> same(2000);
   for (int i = 0; i < 2000; ++i) same[i] = i;
-  const WarmStart warm = makeWarmStart(p.X, y, C, first, same);
+  const WarmStart warm = makeWarmStart(p.X, y, C, k, first, same);
   const SolverResult again = solveBinary(p.X, y, C, k, {}, &warm);
   EXPECT_EQ(again.iterations, 0);
   EXPECT_EQ(again.warm.columns, 0);
@@ -234,15 +235,51 @@ TEST(WarmStart, InconsistentWarmStartThrows) {
   const Kernel k = Kernel::rbfFromSigma(0.1);
   const SolverResult first = solveBinary(p.X, y, C, k, {});
   std::vector<Eigen::Index> bad(100, 0);  // sample 0 continued 100 times
-  const WarmStart w1 = makeWarmStart(p.X, y, C, first, bad);
+  const WarmStart w1 = makeWarmStart(p.X, y, C, k, first, bad);
   try {
     solveBinary(p.X, y, C, k, {}, &w1);
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("continued twice"), std::string::npos);
   }
-  const WarmStart w2 = makeWarmStart(p.X, y, C, first, std::vector<Eigen::Index>(50, -1));
+  const WarmStart w2 = makeWarmStart(p.X, y, C, k, first, std::vector<Eigen::Index>(50, -1));
   EXPECT_THROW(solveBinary(p.X, y, C, k, {}, &w2), std::invalid_argument);
+}
+
+// A start no solve gives is refused, not taken: the solver had ended "optimal" from each of these,
+// far from the optimum (a start from gamma 1 for gamma 4: objective off by 60%, its KKT gap 19).
+TEST(WarmStart, StartsNoSolveGivesAreRefused) {
+  const auto p = makeBallProblem(2, 100, 2, 4);
+  const Eigen::VectorXd y = p.binary();
+  const Eigen::VectorXd C = Eigen::VectorXd::Constant(100, 1.0);
+  const Kernel k = Kernel::rbf(1.0);
+  const SolverResult first = solveBinary(p.X, y, C, k, {});
+  std::vector<Eigen::Index> same(100);
+  std::iota(same.begin(), same.end(), 0);
+  const WarmStart good = makeWarmStart(p.X, y, C, k, first, same);
+  ASSERT_NO_THROW(solveBinary(p.X, y, C, k, {}, &good));
+  const auto refused = [&](const WarmStart& w, const Kernel& kernel, const std::string& expected) {
+    try {
+      solveBinary(p.X, y, C, kernel, {}, &w);
+      ADD_FAILURE() << "taken: " << expected;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  refused(good, Kernel::rbf(4.0), "another kernel");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto with = [&](auto change) {
+    WarmStart w = good;
+    change(w);
+    return w;
+  };
+  refused(with([](WarmStart& w) { w.alpha = -w.alpha; }), k, "0 <= alpha <= C");
+  refused(with([&](WarmStart& w) { w.alpha[3] = nan; }), k, "alpha nan");
+  refused(with([](WarmStart& w) { w.alpha[3] = w.C[3] * 2; }), k, "0 <= alpha <= C");
+  refused(with([&](WarmStart& w) { w.gradient[5] = nan; }), k, "gradient nan");
+  refused(with([](WarmStart& w) { w.gradient_bound[5] = HUGE_VAL; }), k, "gradient_bound inf");
+  refused(with([](WarmStart& w) { w.y[7] = 2; }), k, "y 2");
+  refused(with([&](WarmStart& w) { w.X(0, 9) = nan; }), k, "coordinates not finite");
 }
 
 }  // namespace

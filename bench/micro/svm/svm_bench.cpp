@@ -131,7 +131,7 @@ WarmCase makeWarmCase(int d, int n) {
     w.y[i] = labels[i];
   }
   w.C = Eigen::VectorXd::Constant(w.y.size(), kC);
-  w.warm = makeWarmStart(p.X, y, C, first, prev);
+  w.warm = makeWarmStart(p.X, y, C, kernelFor(p), first, prev);
   w.previous_index = prev;
   return w;
 }
@@ -161,7 +161,7 @@ void BM_TrainWarm_retained(benchmark::State& state) {
     state.PauseTiming();
     SolverWorkspace workspace;
     const SolverResult first = solveBinary(p.X, y, C, k, SolverOptions(), nullptr, &workspace);
-    const WarmStart warm = makeWarmStart(p.X, y, C, first, w.previous_index);
+    const WarmStart warm = makeWarmStart(p.X, y, C, k, first, w.previous_index);
     state.ResumeTiming();
     r = solveBinary(w.X, w.y, w.C, k, SolverOptions(), &warm, &workspace);
   }
