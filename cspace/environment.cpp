@@ -83,4 +83,28 @@ std::vector<int> Environment::nestedGroups() const {
   return group;
 }
 
+std::vector<char> Environment::innerObstacles(const std::vector<int>& groups) const {
+  const int n = size();
+  if (static_cast<int>(groups.size()) != n) throw std::invalid_argument("innerObstacles: one group per obstacle");
+  std::vector<std::vector<int>> members(n + 1);
+  for (int i = 0; i < n; ++i)
+    if (!obstacles_[i].is_virtual) members[groups[i]].push_back(i);
+  std::vector<char> inner(n, 0);
+  for (std::vector<int>& group : members) {
+    if (group.size() < 2) continue;
+    std::vector<double> volume(n);
+    for (int i : group) volume[i] = obstacles_[i].shape.bounds().volume();
+    std::stable_sort(group.begin(), group.end(), [&](int a, int b) { return volume[a] > volume[b]; });
+    std::vector<int> kept;
+    for (int i : group) {
+      const bool in_kept = std::any_of(kept.begin(), kept.end(), [&](int k) {
+        return inside(obstacles_[i].shape, obstacles_[k].shape);
+      });
+      if (in_kept) inner[i] = 1;
+      else kept.push_back(i);
+    }
+  }
+  return inner;
+}
+
 }  // namespace svmp::cspace

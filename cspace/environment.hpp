@@ -41,6 +41,11 @@ class Environment {
   // other shape, within 1e-9 of its size (exact where either is a box; a round shape in a round one
   // may poke out by about 3% of its size). Sweep over the x extents, so far-apart obstacles cost little.
   std::vector<int> nestedGroups() const;
+  // Per obstacle (index id - 1), 1 when it lies inside another real obstacle of its group (of
+  // `groups`, nestedGroups()'s) that is itself kept: its C-region is that one's too, so sampling it
+  // adds nothing. A shape given n times keeps its lowest id; of nested ones the outermost is kept.
+  // Members are taken largest bounding box first, each tested against those kept so far.
+  std::vector<char> innerObstacles(const std::vector<int>& groups) const;
 
  private:
   std::vector<Obstacle> obstacles_;

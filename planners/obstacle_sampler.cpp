@@ -272,7 +272,8 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
   if (!err.empty()) throw std::invalid_argument("obstacle sampler: " + err);
   std::vector<const Obstacle*> targets;
   for (const auto& o : checker.environment().obstacles())
-    if (!o.is_virtual || options.include_virtual) targets.push_back(&o);
+    if ((!o.is_virtual || options.include_virtual) && !(o.id <= std::ssize(options.skip) && options.skip[o.id - 1]))
+      targets.push_back(&o);
   Obstacle self_collision;
   self_collision.id = cspace::kSelfCollisionHit;
   self_collision.name = "self-collision";

@@ -16,11 +16,22 @@
 
 namespace svmp::planners {
 
+namespace {
+// One tree per real obstacle not inside another (Environment::innerObstacles), and one in the
+// self-collision region when it is sampled.
+int obstacleTrees(const PlanningContext& context, const SvmpOptions& options) {
+  const cspace::Environment& env = context.checker.environment();
+  const std::vector<char> inner = env.innerObstacles(env.nestedGroups());
+  return env.numReal() - static_cast<int>(std::count(inner.begin(), inner.end(), 1)) +
+         (options.sample_self_collision && context.checker.checksSelfCollision() ? 1 : 0);
+}
+}  // namespace
+
 SVMP_REGISTER_PLANNER("svmp", [](const PlanningContext& context, const cspace::ParameterSet& params) {
   const SvmpOptions o = SvmpOptions::fromParameters(params);
-  // One tree per real obstacle and the self-collision region; every sample is an SVM training point.
+  // Every sample is an SVM training point.
   constexpr long kMaxSamples = 2000000;
-  const long trees = context.checker.environment().numReal() + 1;
+  const long trees = obstacleTrees(context, o);
   if (static_cast<long>(o.samples_per_tree) * trees > kMaxSamples)
     throw cspace::ScenarioError("planners.svmp.samples_per_tree: " + std::to_string(o.samples_per_tree) + " x " +
                                 std::to_string(trees) + " trees exceeds " + std::to_string(kMaxSamples) +
@@ -29,11 +40,6 @@ SVMP_REGISTER_PLANNER("svmp", [](const PlanningContext& context, const cspace::P
 });
 
 namespace {
-// One tree per real obstacle, and one in the self-collision region when it is sampled.
-int obstacleTrees(const PlanningContext& context, const SvmpOptions& options) {
-  return context.checker.environment().numReal() +
-         (options.sample_self_collision && context.checker.checksSelfCollision() ? 1 : 0);
-}
 // `classes: auto` above 8 obstacles: the per-obstacle neighbourhoods (svm/local_one_vs_rest.hpp) of
 // the scaled samples when there are at most kMaxObstacleClasses and they hold under half of one full
 // problem's kernel entries, else none (colours). A colouring trains at least two models on (almost)
@@ -116,11 +122,12 @@ bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Te
   opt.refine_tolerance = context_.validator.resolution() / 4;
   if (blocked_motion_) opt.blocked_motions = {{blocked_motion_->start, blocked_motion_->goal}};
   opt.stop = stop.asFunction();
-  samples_ = planners::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
   // Obstacles one inside another are one obstacle to learn: a shape given twice, or nested, as
   // classes of their own would ask the SVM to separate one region from itself (training 0.2 -> 85
-  // ms on a corridor whose two blocks were each given ten times).
+  // ms on a corridor whose two blocks were each given ten times). Only the outermost are sampled.
   obstacle_group_ = context_.checker.environment().nestedGroups();
+  opt.skip = context_.checker.environment().innerObstacles(obstacle_group_);
+  samples_ = planners::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
   for (int& label : samples_.labels)
     if (label > 0) label = obstacle_group_[label - 1];
   // One obstacle (or only the self-collision region) sampled: the space's bounds are the other class,

@@ -157,6 +157,9 @@ TEST(EnvironmentTest, NestedObstaclesFormOneGroupAndAFramesPiecesDoNot) {
       obstacle(Shape::sphere(0.5, at(20.8, 0))),                              // 17: half out of 16
   });
   EXPECT_EQ(env.nestedGroups(), (std::vector<int>{1, 1, 3, 3, 3, 6, 7, 8, 9, 10, 11, 12, 1, 1, 15, 16, 17}));
+  // Inside another kept one: 2 (1 again), 13 and 14 (in 1), 4 and 5 (in 3); the virtual 12 is no member.
+  EXPECT_EQ(env.innerObstacles(env.nestedGroups()),
+            (std::vector<char>{0, 1, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0}));
   // The small box is in 3's bounding box, so only the test of the shapes keeps it apart.
   const Eigen::AlignedBox3d bounds = env.byId(3).shape.bounds();
   EXPECT_TRUE(bounds.contains(env.byId(15).shape.bounds()));

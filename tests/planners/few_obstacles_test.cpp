@@ -40,6 +40,30 @@ TEST(FewObstacles, SvmpLearnsNestedObstaclesAsOne) {
   EXPECT_TRUE(pathIsValid(*w, r.path));
 }
 
+// Only the outermost of nested obstacles are sampled: a post given 50 times samples as the post
+// given once (the same trees, seeded by the kept post's id), where it grew 50 trees of one region.
+TEST(FewObstacles, SvmpSamplesAShapeGivenManyTimesOnce) {
+  const auto world = [](int copies) {
+    std::string yaml =
+        "robot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\n"
+        "obstacles:\n"
+        "  - {name: wall, shape: box, size: [0.1, 0.6, 1.0], position: [0.7, 0.5, 0]}\n";
+    for (int i = 0; i < copies; ++i) yaml += "  - {shape: cylinder, radius: 0.1, length: 1, position: [0.3, 0.5, 0]}\n";
+    return makeWorld(yaml + "start: [0.1, 0.5]\ngoal: [0.9, 0.5]\nresolution: 0.01\n");
+  };
+  auto once = world(1), many = world(50);
+  SvmpPlanner a(once->context, SvmpOptions{}), b(many->context, SvmpOptions{});
+  PhaseTimes times;
+  ASSERT_TRUE(a.sampleObstacle(3, times));
+  ASSERT_TRUE(b.sampleObstacle(3, times));
+  EXPECT_EQ(a.samples().labels, b.samples().labels);
+  EXPECT_EQ(a.samples().points, b.samples().points);
+  EXPECT_EQ(std::set<int>(b.samples().labels.begin(), b.samples().labels.end()), (std::set<int>{1, 2}));
+  const PlanResult r = b.solve(many->query(), 3);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_TRUE(pathIsValid(*many, r.path));
+}
+
 // One obstacle: the space's bounds are the other class, and the milestones lie between the two,
 // where a path rounds the obstacle (one-versus-rest used to refuse the scene as invalid input).
 TEST(FewObstacles, SvmpSeparatesALoneObstacleFromTheBounds) {
