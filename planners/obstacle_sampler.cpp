@@ -36,6 +36,7 @@ struct Tree {
   std::string warning;
   bool stopped = false;
   bool out_of_reach = false;  // then no warning of its own: sampleObstacles names them all in one
+  bool no_root = false;       // findRoots found none: named with the others in one warning
 };
 
 // Nearest node by a linear scan: trees hold a few hundred nodes, so a scan over contiguous scaled
@@ -101,11 +102,12 @@ std::optional<Eigen::VectorXd> rootInBounds(const ValidityChecker& checker, cons
 // search per target spends about 1/p draws on each (forest_200: 200 boxes of 0.09% of the space
 // each, about 220k checks). The search goes on while it keeps finding: it stops when every target
 // has a root or after 1000 + 2 x (draws up to the last new root) draws. Then the motions known to be
-// blocked (options.blocked_motions) are walked; a target still without a root (inside a lower-id
-// obstacle, or rare) searches on its own in growTree.
+// blocked (options.blocked_motions) are walked, then one last stream serves the targets still
+// without a root (below). `stopped` is set when options.stop ended the search.
 std::vector<std::optional<Eigen::VectorXd>> findRoots(const ValidityChecker& checker, const ConfigurationSpace& space,
                                                       const std::vector<const Obstacle*>& targets,
-                                                      const ObstacleSamplerOptions& options, std::uint64_t seed) {
+                                                      const ObstacleSamplerOptions& options, std::uint64_t seed,
+                                                      bool& stopped) {
   std::vector<std::optional<Eigen::VectorXd>> roots(targets.size());
   std::map<int, size_t> wanted;  // obstacle id -> target index
   for (size_t t = 0; t < targets.size(); ++t) {
@@ -141,6 +143,26 @@ std::vector<std::optional<Eigen::VectorXd>> findRoots(const ValidityChecker& che
       found(options.include_virtual ? checker.checkIncludingVirtual(q) : checker.check(q));
     }
   }
+  // Last, the targets still without a root (inside a lower-id obstacle, which check() names instead,
+  // or rare) share one stream of max_root_attempts draws: each draw that hits anything is asked of
+  // each of them. A search of its own for each had cost max_root_attempts checks apiece (200 discs
+  // within an arm's reach but beyond its joint limits: 3.9M checks, 864 ms).
+  Rng rng(seed ^ 0x1A57C4A5EULL);
+  for (long a = 1; !wanted.empty() && a <= options.max_root_attempts; ++a) {
+    if (stopRequested(options, a)) {
+      stopped = true;
+      break;
+    }
+    space.sampleUniform(rng, q);
+    if ((options.include_virtual ? checker.checkIncludingVirtual(q) : checker.check(q)) == 0) continue;
+    for (auto it = wanted.begin(); it != wanted.end();)
+      if (checker.hits(q, targets[it->second]->id)) {
+        roots[it->second] = q;
+        it = wanted.erase(it);
+      } else {
+        ++it;
+      }
+  }
   return roots;
 }
 
@@ -157,28 +179,10 @@ Tree growTree(const ValidityChecker& checker, const ConfigurationSpace& space, c
       tree.warning = "obstacle '" + obstacle.name + "': the scenario's sample does not hit it";
       return tree;
     }
-  } else if (outOfReach(checker, obstacle)) {
-    tree.out_of_reach = true;
-    return tree;
   } else {
-    Eigen::VectorXd q(space.dim());
-    bool found = false;
-    for (int a = 0; a < options.max_root_attempts && !found; ++a) {
-      if (stopRequested(options, a)) {
-        tree.stopped = true;
-        return tree;
-      }
-      space.sampleUniform(rng, q);
-      found = checker.hits(q, obstacle.id);
-    }
-    if (!found) {
-      tree.warning = "obstacle '" + obstacle.name + "': no configuration hitting it in " +
-                     std::to_string(options.max_root_attempts) +
-                     " uniform samples (out of the robot's reach, or a small target: give `sample:`, a "
-                     "configuration that hits it)";
-      return tree;
-    }
-    root = q;
+    tree.out_of_reach = outOfReach(checker, obstacle);
+    tree.no_root = !tree.out_of_reach;
+    return tree;
   }
   const int n = options.samples_per_tree;
   const Eigen::VectorXd& scale = space.metricScale();
@@ -279,7 +283,9 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
   self_collision.name = "self-collision";
   if (options.include_self_collision && checker.checksSelfCollision())
     targets.push_back(&self_collision);
-  const std::vector<std::optional<Eigen::VectorXd>> roots = findRoots(checker, space, targets, options, seed);
+  bool roots_stopped = false;
+  const std::vector<std::optional<Eigen::VectorXd>> roots =
+      findRoots(checker, space, targets, options, seed, roots_stopped);
   std::vector<Tree> trees(targets.size());
   cspace::parallelFor(static_cast<int>(targets.size()), threads, 1, [&](int t) {
     trees[t] = growTree(checker, space, *targets[t], options, seed, roots[t]);
@@ -290,19 +296,40 @@ ObstacleSamples sampleObstacles(const ValidityChecker& checker, const Configurat
   for (const auto& tree : trees) total += static_cast<int>(tree.nodes.size());
   samples.points.resize(space.dim(), total);
   int column = 0;
-  // One warning for the obstacles out of reach (crs3_far_near: 300 lines for 300 far boxes), naming
-  // the first ten.
-  std::vector<std::string> far;
-  for (size_t t = 0; t < trees.size(); ++t)
+  samples.stopped = roots_stopped;
+  // One warning for the obstacles out of reach (crs3_far_near: 300 lines for 300 far boxes), and one
+  // for those no draw hit, each naming the first ten.
+  std::vector<std::string> far, missed;
+  bool self_missed = false;
+  for (size_t t = 0; t < trees.size(); ++t) {
     if (trees[t].out_of_reach) far.push_back("'" + targets[t]->name + "'");
-  if (!far.empty()) {
+    if (trees[t].no_root && !roots_stopped) {
+      if (targets[t]->id == cspace::kSelfCollisionHit) self_missed = true;
+      else missed.push_back("'" + targets[t]->name + "'");
+    }
+  }
+  const auto warnOf = [&](const std::vector<std::string>& names, const std::string& one, const std::string& many) {
+    if (names.empty()) return;
     constexpr size_t kNamed = 10;
-    std::string names = far.front();
-    for (size_t i = 1; i < std::min(far.size(), kNamed); ++i) names += ", " + far[i];
-    if (far.size() > kNamed) names += " and " + std::to_string(far.size() - kNamed) + " more";
-    const std::string warning = far.size() == 1 ? "obstacle " + names + ": beyond the robot's reach, not sampled"
-                                                : std::to_string(far.size()) +
-                                                      " obstacles beyond the robot's reach, not sampled: " + names;
+    std::string listed = names.front();
+    for (size_t i = 1; i < std::min(names.size(), kNamed); ++i) listed += ", " + names[i];
+    if (names.size() > kNamed) listed += " and " + std::to_string(names.size() - kNamed) + " more";
+    const std::string warning = names.size() == 1
+                                    ? "obstacle " + listed + ": " + one
+                                    : std::to_string(names.size()) + " obstacles " + many + ": " + listed;
+    samples.warnings.push_back(warning);
+    samples.unsampled.push_back(warning);
+  };
+  warnOf(far, "beyond the robot's reach, not sampled", "beyond the robot's reach, not sampled");
+  const std::string draws = std::to_string(options.max_root_attempts) + " uniform samples";
+  warnOf(missed,
+         "no configuration hitting it in " + draws +
+             " (beyond the joint limits, or a small target: give `sample:`, a configuration that hits it)",
+         "hit by no configuration in " + draws +
+             " (beyond the joint limits, or small targets: give each `sample:`, a configuration that hits it)");
+  if (self_missed) {
+    const std::string warning =
+        "the self-collision region: no configuration in " + draws + " collides with the robot itself, not sampled";
     samples.warnings.push_back(warning);
     samples.unsampled.push_back(warning);
   }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include <unistd.h>
@@ -361,6 +362,7 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
   const auto& queries = scenario.queries;
   const bool shared_build = sharedBuild(scenario, options);
   svm::SolverWorkspace smoothing;  // --simplify svpp: each path's SVM reuses the last one's cache memory
+  std::vector<std::set<std::string>> warned(planners.size());  // per planner, the warnings logged
   // Seed by seed, every planner in turn: a change of load while the run lasts slows each planner
   // alike, so their ratios stay fair (one planner's runs all after another's would not).
   for (int r = 0; r < options.runs; ++r) {
@@ -435,9 +437,12 @@ std::vector<PlannerRuns> runExperiment(const cspace::Scenario& scenario, const D
               << ": " << planners::planStatusName(record.result.status) << ", " << record.result.collision_checks
               << " checks, " << std::fixed << std::setprecision(1) << record.time_ms << " ms"
               << (record.result.message.empty() ? "" : " (" + record.result.message + ")") << "\n";
-        if (r == 0 && i == 0)  // the same scenario gives every run the same warnings (the smoothing's: logged above)
-          for (size_t w = 0; w < planner_warnings; ++w)
-            log << "  " << runs.planner << " warning: " << record.result.warnings[w] << "\n";
+        // Each warning once (the smoothing's: logged above); later seeds' only where new: a root search
+        // that misses an obstacle on one seed may find it on another.
+        for (size_t w = 0; w < planner_warnings; ++w)
+          if (warned[p].insert(record.result.warnings[w]).second)
+            log << "  " << runs.planner << " warning" << (r > 0 ? " (seed " + std::to_string(seed) + ")" : "")
+                << ": " << record.result.warnings[w] << "\n";
         runs.runs.push_back(std::move(record));
       }
     }
