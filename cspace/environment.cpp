@@ -87,21 +87,30 @@ std::vector<char> Environment::innerObstacles(const std::vector<int>& groups) co
   const int n = size();
   if (static_cast<int>(groups.size()) != n) throw std::invalid_argument("innerObstacles: one group per obstacle");
   std::vector<std::vector<int>> members(n + 1);
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < n; ++i) {
+    if (groups[i] < 1 || groups[i] > n) throw std::invalid_argument("innerObstacles: a group id outside [1, n]");
     if (!obstacles_[i].is_virtual) members[groups[i]].push_back(i);
+  }
+  // Inside and exactly so: `inside` is exact where either shape is a box, and a shape given twice is
+  // itself; a round shape in a round one may poke out, and that part would go unsampled.
+  const auto covered = [&](int i, int k) {
+    const robots::Shape &a = obstacles_[i].shape, &b = obstacles_[k].shape;
+    const bool same = a.kind == b.kind && a.dims == b.dims && a.pose.matrix() == b.pose.matrix();
+    return (same || a.kind == robots::ShapeKind::kBox || b.kind == robots::ShapeKind::kBox) && inside(a, b);
+  };
   std::vector<char> inner(n, 0);
+  std::vector<double> volume(n);
+  for (int i = 0; i < n; ++i) volume[i] = obstacles_[i].shape.bounds().volume();
   for (std::vector<int>& group : members) {
     if (group.size() < 2) continue;
-    std::vector<double> volume(n);
-    for (int i : group) volume[i] = obstacles_[i].shape.bounds().volume();
     std::stable_sort(group.begin(), group.end(), [&](int a, int b) { return volume[a] > volume[b]; });
     std::vector<int> kept;
     for (int i : group) {
-      const bool in_kept = std::any_of(kept.begin(), kept.end(), [&](int k) {
-        return inside(obstacles_[i].shape, obstacles_[k].shape);
-      });
-      if (in_kept) inner[i] = 1;
-      else kept.push_back(i);
+      // One given a `sample:` is sampled from it (the kept one may have none, and miss its root).
+      if (!obstacles_[i].root_sample && std::any_of(kept.begin(), kept.end(), [&](int k) { return covered(i, k); }))
+        inner[i] = 1;
+      else
+        kept.push_back(i);
     }
   }
   return inner;

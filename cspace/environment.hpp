@@ -42,9 +42,10 @@ class Environment {
   // may poke out by about 3% of its size). Sweep over the x extents, so far-apart obstacles cost little.
   std::vector<int> nestedGroups() const;
   // Per obstacle (index id - 1), 1 when it lies inside another real obstacle of its group (of
-  // `groups`, nestedGroups()'s) that is itself kept: its C-region is that one's too, so sampling it
-  // adds nothing. A shape given n times keeps its lowest id; of nested ones the outermost is kept.
-  // Members are taken largest bounding box first, each tested against those kept so far.
+  // `groups`, nestedGroups()'s) that is itself kept, exactly so (either is a box, or the two are the
+  // same shape), and has no `sample:`: its C-region is that one's too, so sampling it adds nothing. A
+  // shape given n times keeps its lowest id; of nested ones the outermost is kept. Members are taken
+  // largest bounding box first, each tested against those kept so far.
   std::vector<char> innerObstacles(const std::vector<int>& groups) const;
 
  private:

@@ -34,7 +34,7 @@ struct ObstacleSamplerOptions {
   // space (95% confidence) and is left unsampled with a warning; queries still answer through lazy
   // checks, repair and proofs. The targets left by the shared searches share these draws (a
   // draw that hits anything is asked of each), so many boxes no configuration reaches cost one
-  // search, not one each (200 discs beyond an arm's joint limits: 864 -> 30 ms). The rarest root on the 68 files is
+  // search, not one each (200 discs beyond an arm's joint limits: 867 -> 98 ms). The rarest root on the 68 files is
   // ceiling_slot's front plate (about 1 draw in 12k): unsampled in 8 of 40 seeds, all 40 solved.
   int max_root_attempts = 20000;
   int max_iterations_factor = 50;  // a tree gives up after factor * N expansions
@@ -55,7 +55,7 @@ struct ObstacleSamplerOptions {
   int max_expansions_per_node = 8;
   // Motions known to cross obstacles (a query's straight start-goal motion, checked before the
   // build): obstacles the shared root search missed are looked for along each, a step apart (at most
-  // max_root_attempts checks), before their own uniform searches (a pebble across a 20-link arm's
+  // max_root_attempts checks), before the last shared search (a pebble across a 20-link arm's
   // straight motion took 20,000 draws and a warning that asked for `sample:`).
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> blocked_motions;
   bool include_virtual = false;  // also sample virtual (guide) obstacles
@@ -78,9 +78,10 @@ struct ObstacleSamples {
   Eigen::MatrixXd points;        // dof x n, one sample per column
   std::vector<int> labels;       // obstacle id of each sample
   std::vector<char> boundary;    // 1 when the sample is a boundary sample
-  std::vector<int> tree_sizes;   // per obstacle, in environment order
+  std::vector<int> tree_sizes;   // per tree grown: the obstacles sampled in environment order, then the self-collision region
   std::vector<std::string> warnings;  // roots not found, trees that stopped early
-  // The warnings of the obstacles left without a sample (one warning names all those out of reach).
+  // The warnings of the obstacles left without a sample (one names all those out of reach, one all
+  // those no draw hit, one the self-collision region).
   std::vector<std::string> unsampled;
   bool stopped = false;          // ObstacleSamplerOptions::stop ended the sampling
   int size() const { return static_cast<int>(labels.size()); }

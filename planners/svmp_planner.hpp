@@ -121,7 +121,7 @@ struct SvmpOptions {
   // "" when usable, else what is wrong.
   std::string validate() const;
   // These options with sigma, step and samples_per_tree derived where unset; `trees`: how many
-  // obstacle trees the sampling grows (real obstacles and the self-collision region).
+  // obstacle trees the sampling grows (real obstacles not inside another, and the self-collision region).
   SvmpOptions resolvedFor(const cspace::ConfigurationSpace& space, int trees) const;
   // The milestone descent with descent_step resolved.
   DescentOptions descent() const;

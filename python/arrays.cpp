@@ -97,7 +97,7 @@ DoubleArray checkedArray(const py::handle& object, const std::string& name, int 
   if (const py::array raw = py::array::ensure(object); raw) {
     const char kind = raw.dtype().kind();
     if (kind == 'c') throw py::value_error(name + ": expected real numbers, got an array of complex numbers");
-    if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'O')
+    if (kind != 'f' && kind != 'i' && kind != 'u')
       throw py::value_error(name + ": expected an array of numbers, got one of dtype " +
                             std::string(py::str(raw.dtype())));
   }

@@ -7,7 +7,7 @@
 namespace svmp::svm {
 
 KernelCache::KernelCache(int n, double size_mb) : columns_(n) {
-  // Capped at 2^60 floats, far beyond any memory: a size_mb past 2^63 bytes had overflowed the
+  // Capped at 2^60 floats, far beyond any memory: a size_mb past 2^63 floats had overflowed the
   // conversion and left the least cache.
   const long long floats = static_cast<long long>(std::min(size_mb * 1024.0 * 1024.0 / sizeof(float), 0x1p60));
   capacity_ = std::max(floats, 2LL * n);

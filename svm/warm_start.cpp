@@ -18,10 +18,15 @@ std::string WarmStart::validate(Eigen::Index n, Eigen::Index d, const Kernel& ne
         return p;
     return -1;
   };
+  const auto describe = [](const Kernel& k) {
+    std::ostringstream text;
+    text << kernelTypeName(k.type) << " gamma " << k.gamma << " coef0 " << k.coef0 << " degree " << k.degree
+         << " block " << k.block;
+    return text.str();
+  };
   if (!(kernel == new_kernel)) {
-    msg << "warm start: the previous solution is of another kernel (" << kernelTypeName(kernel.type) << ", gamma "
-        << kernel.gamma << "; now " << kernelTypeName(new_kernel.type) << ", gamma " << new_kernel.gamma
-        << "), whose gradient does not hold for this one: solve without it";
+    msg << "warm start: the previous solution is of another kernel (" << describe(kernel) << "; now "
+        << describe(new_kernel) << "), whose gradient does not hold for this one: solve without it";
   } else if (X.rows() != d && m > 0) {
     msg << "warm start: previous samples have dimension " << X.rows() << ", new ones " << d;
   } else if (y.size() != m || C.size() != m || alpha.size() != m || gradient.size() != m ||

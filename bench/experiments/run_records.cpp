@@ -23,7 +23,7 @@ namespace {
 using nlohmann::json;
 
 // JSON has no infinities or NaN: an infinity is written as the string "inf" or "-inf" (a path's
-// clearance with no obstacle in the scene), NaN as null; get<double> reads both back.
+// clearance with no obstacle in the scene: read back by clearanceOf), NaN as null (get<double>).
 json number(double v) {
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return std::isnan(v) ? json(nullptr) : json(v);
@@ -42,10 +42,8 @@ template <class T>
 T get(const json& obj, const std::string& key, const std::string& where) {
   const auto it = obj.find(key);
   if (it == obj.end()) throw std::runtime_error(where + ": field '" + key + "' missing");
-  if constexpr (std::is_same_v<T, double>) {
+  if constexpr (std::is_same_v<T, double>)
     if (it->is_null()) return std::numeric_limits<double>::quiet_NaN();
-    if (*it == "inf" || *it == "-inf") return *it == "inf" ? HUGE_VAL : -HUGE_VAL;
-  }
   // An integer read from a negative number, a fraction or one out of T's range would wrap or round
   // without a word (a query 4294967296 read as 0, 0.9 as 0).
   if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
@@ -64,6 +62,12 @@ T get(const json& obj, const std::string& key, const std::string& where) {
   } catch (const json::exception&) {
     throw std::runtime_error(where + ": field '" + key + "' has the wrong type: " + it->dump());
   }
+}
+
+// A record's min_clearance: a number, null or "inf" (only a clearance is ever infinite).
+double clearanceOf(const json& j, const std::string& where) {
+  if (const auto it = j.find("min_clearance"); it != j.end() && *it == "inf") return HUGE_VAL;
+  return get<double>(j, "min_clearance", where);
 }
 
 RunRecord recordFromJson(const json& j, const std::string& where) {
@@ -102,7 +106,7 @@ RunRecord recordFromJson(const json& j, const std::string& where) {
   r.raw_length = get<double>(j, "raw_length", where);
   r.smoothness = get<double>(j, "smoothness", where);
   r.simplify_ms = get<double>(j, "simplify_ms", where);
-  r.min_clearance = get<double>(j, "min_clearance", where);
+  r.min_clearance = clearanceOf(j, where);
   // What svmp-plan never writes: a solved path it did not certify, a negative time.
   if (p.status == planners::PlanStatus::kSolved && !p.certified)
     throw std::runtime_error(where + ": status 'solved' but not certified (svmp-plan counts only certified paths)");

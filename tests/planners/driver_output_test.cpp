@@ -200,10 +200,9 @@ TEST(DriverOutput, APathTheSvmSmoothingKeepsSaysSoInItsRecord) {
   EXPECT_EQ(log.str().find("warning: --simplify svpp"), std::string::npos) << "said twice:\n" << log.str();
 }
 
-// With no obstacle at all every clearance is infinite, which JSON cannot hold: the statistics say
-// null, and the table says inf (they used to read "inf" and "-nan", and no JSON parser took the file).
-// A path with no obstacle in the scene has an infinite clearance. JSON has no infinity: the record
-// says "inf", the summary null, and --merge reads the record back as infinite (it had read null as NaN).
+// A path with no obstacle in the scene has an infinite clearance, which JSON cannot hold: the record
+// says "inf", the summary null, the table inf, and --merge reads the record back as infinite (it had
+// read null as NaN; before that the file had held a bare inf and -nan, which no parser took).
 TEST(DriverOutput, InfiniteClearanceIsValidJsonAndMergesBackInfinite) {
   const std::string text_scenario =
       "name: empty\nrobot: {type: point, bounds: {lower: [0, 0], upper: [1, 1]}}\nobstacles: []\n"

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "planners/obstacle_sampler.hpp"
 #include "test_world.hpp"
@@ -352,6 +354,62 @@ TEST(ObstacleSampler, ObstaclesBeyondReachAreOneWarning) {
   EXPECT_EQ(s.warnings[0], "12 obstacles beyond the robot's reach, not sampled: 'far1', 'far2', 'far3', 'far4', "
                            "'far5', 'far6', 'far7', 'far8', 'far9', 'far10' and 2 more");
   EXPECT_EQ(s.unsampled, s.warnings);
+}
+
+// Obstacles within reach but beyond the joint limits: no draw hits them. They share one last
+// search (each draw that hits anything asked of each) and one warning; each had searched 20,000
+// draws of its own (200 such discs: 3.97M checks).
+TEST(ObstacleSampler, ObstaclesNoDrawHitsShareOneSearchAndOneWarning) {
+  std::string yaml =
+      "robot: {type: planar_arm, lengths: [1.0, 0.8], widths: 0.05, limits: {lower: [0, -2.5], upper: [1, 2.5]}}\n"
+      "obstacles:\n  - {name: near, shape: box, size: [0.2, 0.2, 1], position: [0.6, 0.6, 0]}\n";
+  for (int i = 1; i <= 12; ++i)
+    yaml += "  - {name: behind" + std::to_string(i) + ", shape: sphere, radius: 0.05, position: [" +
+            std::to_string(1.5 * std::cos(2.3 + 0.1 * i)) + ", " + std::to_string(1.5 * std::sin(2.3 + 0.1 * i)) +
+            ", 0]}\n";
+  auto w = makeWorld(yaml + "start: [0.1, 0]\ngoal: [0.9, 0]\nresolution: 0.01\n");
+  planners::ObstacleSamplerOptions opt;
+  opt.step = 0.05;
+  opt.samples_per_tree = 30;
+  const auto [s, checks] = sampleCountingChecks(*w, opt, 31);
+  EXPECT_GT(s.tree_sizes[0], 0);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].rfind("12 obstacles hit by no configuration in 20000 uniform samples (beyond the joint "
+                                "limits, or small targets: give each `sample:`",
+                                0),
+            0u)
+      << s.warnings[0];
+  EXPECT_EQ(s.unsampled, s.warnings);
+  EXPECT_LT(checks, 160000u) << "a search each: 12 x 20,000 = 240,000";
+  // Cut short by the limit: stopped, and no obstacle reported as missed.
+  opt.stop = [] { return true; };
+  const auto stopped = sampleCountingChecks(*w, opt, 31).samples;
+  EXPECT_TRUE(stopped.stopped);
+  for (const std::string& warning : stopped.warnings) EXPECT_EQ(warning.find("no configuration"), std::string::npos);
+}
+
+// An obstacle inside a lower-id one: every draw that hits it names the lower id, so the first shared
+// search never finds it; the last one asks each draw of it too.
+TEST(ObstacleSampler, AnObstacleInsideALowerIdOneFindsItsRoot) {
+  auto w = makeWorld(
+      "robot: {type: planar_arm, lengths: [1.0, 0.8], widths: 0.05}\n"
+      "obstacles:\n"
+      "  - {name: outer, shape: box, size: [0.6, 0.6, 1], position: [0.9, 0.6, 0]}\n"
+      "  - {name: inner, shape: box, size: [0.2, 0.2, 1], position: [0.9, 0.6, 0]}\n"
+      "  - {name: other, shape: box, size: [0.2, 0.2, 1], position: [-1.2, 0, 0]}\n"
+      "start: [-0.5, 0]\ngoal: [-2.5, 0]\nresolution: 0.01\n");
+  planners::ObstacleSamplerOptions opt;
+  opt.step = 0.05;
+  opt.samples_per_tree = 30;
+  const auto [s, checks] = sampleCountingChecks(*w, opt, 31);
+  ASSERT_EQ(s.tree_sizes.size(), 3u);
+  EXPECT_GT(s.tree_sizes[1], 0);
+  for (const std::string& warning : s.warnings) EXPECT_EQ(warning.find("'inner'"), std::string::npos) << warning;
+  EXPECT_TRUE(everySampleHitsItsObstacle(*w, s));
+  // SVMP skips it (Environment::innerObstacles): then only the other two grow trees.
+  opt.skip = w->checker.environment().innerObstacles(w->checker.environment().nestedGroups());
+  EXPECT_EQ(opt.skip, (std::vector<char>{0, 1, 0}));
+  EXPECT_EQ(sampleCountingChecks(*w, opt, 31).samples.tree_sizes.size(), 2u);
 }
 
 TEST(ObstacleSampler, SameSeedGivesSameSamplesWithOneAndTwoThreads) {
