@@ -245,6 +245,32 @@ bool CollisionChecker::hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) 
   return false;
 }
 
+std::vector<int> CollisionChecker::allHits(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const {
+  if (q.size() != robot_->dof()) robot_->checkConfiguration(q, "collision check");
+  checks_.fetch_add(1, std::memory_order_relaxed);
+  std::vector<int> ids;
+  if (!robot_->withinLimits(q)) return ids;
+  Workspace& ws = workspace();
+  placeRobot(ws, q);
+  std::vector<char> hit(env_->obstacles().size(), 0);
+  for (int i = 0; i < robot_->numLinks(); ++i)
+    for (Placed& part : ws.parts[i]) {
+      const auto consider = [&](int index) {  // index = id - 1
+        if (!hit[index] && (include_virtual || !env_->obstacles()[index].is_virtual) &&
+            pairCollides(part, ws.obstacle_parts[index]))
+          hit[index] = 1;
+      };
+      if (grid_)
+        grid_->forEachCandidate(part.box, consider);
+      else
+        for (int index = 0; index < std::ssize(env_->obstacles()); ++index) consider(index);
+    }
+  for (size_t index = 0; index < hit.size(); ++index)
+    if (hit[index]) ids.push_back(static_cast<int>(index) + 1);
+  if (collidingSelfPair(ws)) ids.push_back(kSelfCollisionHit);
+  return ids;
+}
+
 std::optional<std::pair<int, int>> CollisionChecker::selfCollidingPair(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   robot_->checkConfiguration(q, "collision check");
   checks_.fetch_add(1, std::memory_order_relaxed);

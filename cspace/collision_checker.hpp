@@ -42,6 +42,8 @@ class CollisionChecker final : public ValidityChecker {
     return checkImpl(q, true);
   }
   bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const override;
+  // One placement of the robot and the grid's candidates; counts one collision check.
+  std::vector<int> allHits(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const override;
   // The first kept self-collision pair (selfCollisionPairs) that collides at q, for messages; nullopt
   // when none does. Counts one collision check.
   std::optional<std::pair<int, int>> selfCollidingPair(const Eigen::Ref<const Eigen::VectorXd>& q) const;

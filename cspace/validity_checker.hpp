@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "cspace/environment.hpp"
 #include "robots/robot.hpp"
@@ -45,6 +46,17 @@ class ValidityChecker {
   // True when the robot (within joint limits) overlaps obstacle `id` (real or virtual), or, for
   // id == kSelfCollisionHit, when two of its non-adjacent links overlap. Counts one collision check.
   virtual bool hits(const Eigen::Ref<const Eigen::VectorXd>& q, int id) const = 0;
+  // The ids of every obstacle the robot overlaps at q, ascending (virtual ones too when
+  // include_virtual), then kSelfCollisionHit when two of its non-adjacent links overlap; empty
+  // outside the joint limits. What hits() answers obstacle by obstacle, in one query (the obstacle
+  // sampler's last root search asks it of every draw). This default asks hits() of each obstacle.
+  virtual std::vector<int> allHits(const Eigen::Ref<const Eigen::VectorXd>& q, bool include_virtual) const {
+    std::vector<int> ids;
+    for (const Obstacle& o : environment().obstacles())
+      if ((include_virtual || !o.is_virtual) && hits(q, o.id)) ids.push_back(o.id);
+    if (checksSelfCollision() && hits(q, kSelfCollisionHit)) ids.push_back(kSelfCollisionHit);
+    return ids;
+  }
   // Minimum distance between the robot and the real obstacles; 0 when touching or penetrating. Not
   // counted as a collision check.
   virtual double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const = 0;

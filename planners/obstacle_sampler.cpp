@@ -151,9 +151,9 @@ std::vector<std::optional<Eigen::VectorXd>> findRoots(const ValidityChecker& che
     }
   }
   // Last, the targets still without a root (inside a lower-id obstacle, which check() names instead,
-  // or rare) share one stream of max_root_attempts draws: each draw that hits anything is asked of
-  // each of them. A search of its own for each had cost max_root_attempts checks apiece (200 discs
-  // within an arm's reach but beyond its joint limits: 3.97M checks, 867 ms; shared, 571k and 98 ms).
+  // or rare) share one stream of max_root_attempts draws, each draw asked which obstacles it hits
+  // (ValidityChecker::allHits, one check). A search of its own for each had cost max_root_attempts
+  // checks apiece (200 discs within an arm's reach but beyond its joint limits: 3.97M checks, 867 ms).
   Rng rng(seed ^ 0x1A57C4A5EULL);
   for (long a = 1; !wanted.empty() && !stopped && a <= options.max_root_attempts; ++a) {
     if (stopRequested(options, a)) {
@@ -161,14 +161,12 @@ std::vector<std::optional<Eigen::VectorXd>> findRoots(const ValidityChecker& che
       break;
     }
     space.sampleUniform(rng, q);
-    if ((options.include_virtual ? checker.checkIncludingVirtual(q) : checker.check(q)) == 0) continue;
-    for (auto it = wanted.begin(); it != wanted.end();)
-      if (checker.hits(q, targets[it->second]->id)) {
-        roots[it->second] = q;
-        it = wanted.erase(it);
-      } else {
-        ++it;
-      }
+    for (const int id : checker.allHits(q, options.include_virtual)) {
+      const auto it = wanted.find(id);
+      if (it == wanted.end()) continue;
+      roots[it->second] = q;
+      wanted.erase(it);
+    }
   }
   return roots;
 }

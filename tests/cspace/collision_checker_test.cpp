@@ -7,6 +7,7 @@
 #include <memory>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include <fcl/narrowphase/collision.h>
 
@@ -283,7 +284,8 @@ TEST(CollisionCheckerTest, AToolOffsetFromJointOneMeetsTheBaseColumn) {
 }
 
 TEST(CollisionCheckerTest, BroadphaseAgreesWithPerObstacleTests) {
-  // 14 obstacles (> 8) go through the broadphase grid; hits() tests each obstacle on its own.
+  // 14 obstacles (> 8) go through the broadphase grid; hits() tests each obstacle on its own, and
+  // allHits() names every one hit.
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> coord(-2.5, 2.5), size(0.05, 0.3);
   std::vector<Obstacle> obstacles;
@@ -301,13 +303,20 @@ TEST(CollisionCheckerTest, BroadphaseAgreesWithPerObstacleTests) {
   for (int trial = 0; trial < 300; ++trial) {
     const Eigen::Vector3d q(angle(rng), angle(rng), angle(rng));
     int expected = kFree, expected_virtual = kFree;
+    std::vector<int> all, all_real;  // allHits: every id hit, ascending
     for (int id = env->size(); id >= 1; --id) {
       if (!checker.hits(q, id)) continue;
       expected_virtual = id;
-      if (!env->byId(id).is_virtual) expected = id;
+      all.insert(all.begin(), id);
+      if (env->byId(id).is_virtual) continue;
+      expected = id;
+      all_real.insert(all_real.begin(), id);
     }
     EXPECT_EQ(checker.check(q), expected) << "q = [" << q.transpose() << "]";
     EXPECT_EQ(checker.checkIncludingVirtual(q), expected_virtual) << "q = [" << q.transpose() << "]";
+    EXPECT_EQ(checker.allHits(q, true), all) << "q = [" << q.transpose() << "]";
+    EXPECT_EQ(checker.allHits(q, false), all_real) << "q = [" << q.transpose() << "]";
+    EXPECT_EQ(checker.ValidityChecker::allHits(q, true), all) << "the default, hits() by hits()";
     hit += expected != kFree;
   }
   EXPECT_GT(hit, 30);  // the comparison covers both answers
