@@ -32,9 +32,9 @@ struct ObstacleSamplerOptions {
   int samples_per_tree = 200;    // N
   // Uniform draws when searching for a root. An obstacle these miss fills under about 1/7,000 of the
   // space (95% confidence) and is left unsampled with a warning; queries still answer through lazy
-  // checks, repair and proofs. The targets left by the shared searches share these draws (a
-  // draw that hits anything is asked of each), so many boxes no configuration reaches cost one
-  // search, not one each (200 discs beyond an arm's joint limits: 867 -> 98 ms). The rarest root on the 68 files is
+  // checks, repair and proofs. The targets left by the shared searches share these draws (each
+  // asked which obstacles it hits), so many obstacles no configuration reaches cost one search, not
+  // one each (200 discs beyond an arm's joint limits: 867 -> 25 ms). The rarest root on the 68 files is
   // ceiling_slot's front plate (about 1 draw in 12k): unsampled in 8 of 40 seeds, all 40 solved.
   int max_root_attempts = 20000;
   int max_iterations_factor = 50;  // a tree gives up after factor * N expansions
