@@ -37,6 +37,14 @@ CountedSamples sampleCountingChecks(const test::World& w, const planners::Obstac
   return {std::move(s), w.checker.collisionChecks() - before};
 }
 
+// Trees of 30 samples a step of 0.05 apart: the arm tests' sampling.
+planners::ObstacleSamplerOptions smallArmTrees() {
+  planners::ObstacleSamplerOptions opt;
+  opt.step = 0.05;
+  opt.samples_per_tree = 30;
+  return opt;
+}
+
 // Every sample hits the obstacle it is labelled with (its first miss named).
 ::testing::AssertionResult everySampleHitsItsObstacle(const test::World& w, const planners::ObstacleSamples& s) {
   for (int i = 0; i < s.size(); ++i)
@@ -323,9 +331,7 @@ TEST(ObstacleSampler, ObstacleBeyondTheArmsReachIsSkippedWithoutSearching) {
       "  - {name: rim, shape: box, size: [0.2, 0.2, 1], position: [1.85, 0, 0]}\n"
       "  - {name: far, shape: box, size: [0.2, 0.2, 1], position: [2.0, 0, 0]}\n"
       "start: [0, 0.5]\ngoal: [3, 0.5]\nresolution: 0.01\n");
-  planners::ObstacleSamplerOptions opt;
-  opt.step = 0.05;
-  opt.samples_per_tree = 30;
+  planners::ObstacleSamplerOptions opt = smallArmTrees();
   const auto [s, checks] = sampleCountingChecks(*w, opt, 31);
   ASSERT_EQ(s.tree_sizes.size(), 3u);
   EXPECT_GT(s.tree_sizes[0], 0);
@@ -346,9 +352,7 @@ TEST(ObstacleSampler, ObstaclesBeyondReachAreOneWarning) {
     yaml += "  - {name: far" + std::to_string(i) + ", shape: box, size: [0.2, 0.2, 1], position: [" +
             std::to_string(3 + i) + ", 0, 0]}\n";
   auto w = makeWorld(yaml + "start: [0, 0.5]\ngoal: [3, 0.5]\nresolution: 0.01\n");
-  planners::ObstacleSamplerOptions opt;
-  opt.step = 0.05;
-  opt.samples_per_tree = 30;
+  planners::ObstacleSamplerOptions opt = smallArmTrees();
   const auto [s, checks] = sampleCountingChecks(*w, opt, 31);
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_EQ(s.warnings[0], "12 obstacles beyond the robot's reach, not sampled: 'far1', 'far2', 'far3', 'far4', "
@@ -368,9 +372,7 @@ TEST(ObstacleSampler, ObstaclesNoDrawHitsShareOneSearchAndOneWarning) {
             std::to_string(1.5 * std::cos(2.3 + 0.1 * i)) + ", " + std::to_string(1.5 * std::sin(2.3 + 0.1 * i)) +
             ", 0]}\n";
   auto w = makeWorld(yaml + "start: [0.1, 0]\ngoal: [0.9, 0]\nresolution: 0.01\n");
-  planners::ObstacleSamplerOptions opt;
-  opt.step = 0.05;
-  opt.samples_per_tree = 30;
+  planners::ObstacleSamplerOptions opt = smallArmTrees();
   const auto [s, checks] = sampleCountingChecks(*w, opt, 31);
   EXPECT_GT(s.tree_sizes[0], 0);
   ASSERT_EQ(s.warnings.size(), 1u);
@@ -398,9 +400,7 @@ TEST(ObstacleSampler, AnObstacleInsideALowerIdOneFindsItsRoot) {
       "  - {name: inner, shape: box, size: [0.2, 0.2, 1], position: [0.9, 0.6, 0]}\n"
       "  - {name: other, shape: box, size: [0.2, 0.2, 1], position: [-1.2, 0, 0]}\n"
       "start: [-0.5, 0]\ngoal: [-2.5, 0]\nresolution: 0.01\n");
-  planners::ObstacleSamplerOptions opt;
-  opt.step = 0.05;
-  opt.samples_per_tree = 30;
+  planners::ObstacleSamplerOptions opt = smallArmTrees();
   const auto [s, checks] = sampleCountingChecks(*w, opt, 31);
   ASSERT_EQ(s.tree_sizes.size(), 3u);
   EXPECT_GT(s.tree_sizes[1], 0);
