@@ -17,12 +17,10 @@
 namespace svmp::planners {
 
 namespace {
-// One tree per real obstacle not inside another (Environment::innerObstacles), and one in the
-// self-collision region when it is sampled.
-int obstacleTrees(const PlanningContext& context, const SvmpOptions& options) {
-  const cspace::Environment& env = context.checker.environment();
-  const std::vector<char> inner = env.innerObstacles(env.nestedGroups());
-  return env.numReal() - static_cast<int>(std::count(inner.begin(), inner.end(), 1)) +
+// One tree per real obstacle not inside another (`inner`, Environment::innerObstacles), and one in
+// the self-collision region when it is sampled.
+int obstacleTrees(const PlanningContext& context, const SvmpOptions& options, const std::vector<char>& inner) {
+  return context.checker.environment().numReal() - static_cast<int>(std::count(inner.begin(), inner.end(), 1)) +
          (options.sample_self_collision && context.checker.checksSelfCollision() ? 1 : 0);
 }
 }  // namespace
@@ -31,7 +29,8 @@ SVMP_REGISTER_PLANNER("svmp", [](const PlanningContext& context, const cspace::P
   const SvmpOptions o = SvmpOptions::fromParameters(params);
   // Every sample is an SVM training point.
   constexpr long kMaxSamples = 2000000;
-  const long trees = obstacleTrees(context, o);
+  const cspace::Environment& env = context.checker.environment();
+  const long trees = obstacleTrees(context, o, env.innerObstacles(env.nestedGroups()));
   if (static_cast<long>(o.samples_per_tree) * trees > kMaxSamples)
     throw cspace::ScenarioError("planners.svmp.samples_per_tree: " + std::to_string(o.samples_per_tree) + " x " +
                                 std::to_string(trees) + " trees exceeds " + std::to_string(kMaxSamples) +
@@ -66,7 +65,10 @@ void takePath(const Roadmap& roadmap, const std::vector<int>& nodes, const Plann
 }  // namespace
 
 SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
-    : Planner(context), options_(options.resolvedFor(context.space, obstacleTrees(context, options))) {
+    : Planner(context),
+      obstacle_group_(context.checker.environment().nestedGroups()),
+      inner_obstacles_(context.checker.environment().innerObstacles(obstacle_group_)),
+      options_(options.resolvedFor(context.space, obstacleTrees(context, options, inner_obstacles_))) {
   if (const std::string err = options.validate(); !err.empty()) throw std::invalid_argument("svmp: " + err);
   if (options_.duplicate_radius < 0) options_.duplicate_radius = 0.5 * options_.step;
 }
@@ -125,8 +127,7 @@ bool SvmpPlanner::sampleObstacle(std::uint64_t seed, PhaseTimes& times, const Te
   // Obstacles one inside another are one obstacle to learn: a shape given twice, or nested, as
   // classes of their own would ask the SVM to separate one region from itself (training 0.2 -> 85
   // ms on a corridor whose two blocks were each given ten times). Only the outermost are sampled.
-  obstacle_group_ = context_.checker.environment().nestedGroups();
-  opt.skip = context_.checker.environment().innerObstacles(obstacle_group_);
+  opt.skip = inner_obstacles_;
   samples_ = planners::sampleObstacles(context_.checker, context_.space, opt, seed, context_.threads);
   for (int& label : samples_.labels)
     if (label > 0) label = obstacle_group_[label - 1];

@@ -223,6 +223,11 @@ class SvmpPlanner final : public Planner {
   // roadmap, with their edges except those to the query's ends.
   void keepTreeNodes(const Roadmap& with_query, int first);
 
+  // Properties of the immutable environment, found once: obstacle id - 1 -> its sample label
+  // (Environment::nestedGroups), and the obstacles not sampled (Environment::innerObstacles).
+  // Declared before options_, which derives its samples per tree from the trees left.
+  const std::vector<int> obstacle_group_;
+  const std::vector<char> inner_obstacles_;
   SvmpOptions options_;
   planners::ObstacleSamples samples_;
   std::optional<RiskFunction> risk_;
@@ -230,7 +235,6 @@ class SvmpPlanner final : public Planner {
   Roadmap with_query_;  // roadmap_ plus a query's endpoints; assigned anew per round, keeping its allocations
   std::optional<NearestNeighbors> nn_;
   std::vector<bool> grown_by_trees_;  // roadmap_ nodes the repair's trees added (by index; shorter: no)
-  std::vector<int> obstacle_group_;     // obstacle id - 1 -> its sample label (Environment::nestedGroups)
   std::map<int, int> class_of_label_;  // sample label -> the risk function's class label
   std::vector<std::pair<Eigen::VectorXd, int>> uncentred_;  // deferred descent ends and their classes
   // The step the repair's trees adapt (connectByTrees), carried across a query's rounds: a round's
