@@ -8,7 +8,7 @@
 // from, q_expansion, is marked a boundary sample (the thesis' "otherwise": q_new free); q_new is dropped.
 // A step into another obstacle across no free space marks nothing: the surface there faces no free
 // space (73 files, 60 seeds: every run solved, time 0.95x geometric mean, 0.53-1.61x;
-// docs/reproduction.md, "Boundary samples face free space"). Each tree stops at N nodes (or when it
+// docs/dev-log.md, "Boundary samples face free space"). Each tree stops at N nodes (or when it
 // stalls, max_idle_factor, or is thinner than the step, max_expansions_per_node).
 // Surface refinement (on by default; the thesis' own future direction, ch. 3.5: "sampling methods that
 // focus on boundary samples"): the first time a node is marked boundary, the segment from it to the free
@@ -45,7 +45,7 @@ struct ObstacleSamplerOptions {
   // tree's size, not N: a small tree also stalls where few uniform targets fall near its obstacle,
   // and its interior nodes are not what the SVMs train on (interior_fraction). Against 2N idle
   // expansions: the same success on the 33 files, forest_200 43.6 -> 23.6 ms, panda_shelf 264 ->
-  // 184 ms (docs/reproduction.md).
+  // 184 ms (docs/dev-log.md).
   int max_idle_factor = 2;
   // ... or when it is thin: more than factor * max(20, nodes) expansions in all. A C-obstacle thinner
   // than the step (a wall, a pillar, an arm's self-collision region) sends most expansions out, and

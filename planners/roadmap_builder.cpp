@@ -141,7 +141,7 @@ std::vector<int> provenPath(Roadmap& roadmap, int from, int to, const PlanningCo
     // edge's midpoint is checked at once, a check per edge, and the failures removed; past twice as
     // many, their quarter points: edges across a board thinner than a tenth of their length pass the
     // midpoint (a point robot between shelf compartments 0.05 thick: 110-252 searches a run, 43% of
-    // svmp's time, then 76-107; docs/reproduction.md, thirty-third session).
+    // svmp's time, then 76-107; docs/dev-log.md, thirty-third session).
     if (searches % kSearchesBeforeScreeningAll == 0 && searches / kSearchesBeforeScreeningAll <= kScreenLevels) {
       std::vector<std::pair<int, int>> failed;
       level = searches / kSearchesBeforeScreeningAll;

@@ -23,7 +23,7 @@ bool connectMilestones(Roadmap& roadmap, const NearestNeighbors& nn, const Plann
 // different components and either has tried fewer than k pairs (a pair a query found blocked counts
 // as tried, unchecked). Both build a spanning forest of the pairs found free; in node order a node
 // whose nearest share its component reaches further, and a free edge's check costs its length
-// (SVMP's eager pass after a failed lazy query: up to 30% fewer collision checks, docs/reproduction.md).
+// (SVMP's eager pass after a failed lazy query: up to 30% fewer collision checks, docs/dev-log.md).
 bool connectShortestFirst(Roadmap& roadmap, const NearestNeighbors& nn, const PlanningContext& context, int k,
                           const Termination& stop = {});
 

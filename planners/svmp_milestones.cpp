@@ -2,7 +2,7 @@
 // their class to its decision boundary; the ends that are new (NearDuplicateFilter) and free join the
 // roadmap. An end that collides lies where the boundary, smooth at the scale sigma, misses a passage
 // narrower than sigma: it is centred along the boundary's normal (centreAlongNormal), at once or
-// deferred until a query needs it (docs/reproduction.md, "Centring when a query needs it").
+// deferred until a query needs it (docs/dev-log.md, "Centring when a query needs it").
 #include <atomic>
 #include <cmath>
 #include <limits>

@@ -43,7 +43,7 @@ namespace {
 // the scaled samples when there are at most kMaxObstacleClasses and they hold under half of one full
 // problem's kernel entries, else none (colours). A colouring trains at least two models on (almost)
 // every sample, as its colours' neighbourhoods cover the space; sparse obstacles (3-D forests, an
-// arm's clutter) train faster one per obstacle (docs/reproduction.md). Beyond kMaxObstacleClasses
+// arm's clutter) train faster one per obstacle (docs/dev-log.md). Beyond kMaxObstacleClasses
 // colours keep the model count bounded where obstacles are many (issue 13).
 constexpr int kMaxObstacleClasses = 64;
 std::vector<std::vector<int>> smallObstacleNeighbourhoods(const Eigen::MatrixXd& scaled, const std::vector<int>& labels,
@@ -283,7 +283,7 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
   // (Fig 4.4: 8% fewer checks with the tenth).
   // Their step adapts to the clutter (connectByTrees): with OMPL's fixed range a 4-link arm hooking
   // from one wall top to the other under a ceiling failed 6 of 20 seeds, and Fig 4.12's trees grew
-  // 0-1 nodes in 450 samples (median 34 -> 6 ms; docs/reproduction.md, thirty-first session).
+  // 0-1 nodes in 450 samples (median 34 -> 6 ms; docs/dev-log.md, thirty-first session).
   const int first = std::max(start_node, goal_node) + 1;
   const int own = with_query.numNodes();  // this call's nodes from here on (an earlier call's stay)
   int linked = first;
@@ -302,7 +302,7 @@ bool SvmpPlanner::joinByTrees(Roadmap& with_query, int start_node, int goal_node
     if (!grown.connected) return false;
     // The trees' nodes are linked lazily to their k nearest milestones, as the lazy roadmap's own: the
     // search then leaves the trees' detours where a milestone offers a shorter way (paths 9-28% shorter
-    // on the gaps and the Panda files, docs/reproduction.md, twelfth session). The nodes are new, so no
+    // on the gaps and the Panda files, docs/dev-log.md, twelfth session). The nodes are new, so no
     // pair of theirs is blocked yet.
     for (int v = linked; v < with_query.numNodes(); ++v)
       for (int j : nn_->nearest(with_query.node(v), options_.k))
@@ -387,7 +387,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
   // kMaxRoundsFactor x repair_rounds rounds in all); one without progress spends a round and doubles
   // the spread of the next round's samples (up to 8x). 8x stopped 5 of 4,380 runs (60 seeds, 73
   // files) that were still growing towards a window or along a tunnel; 32x solves all five
-  // (docs/reproduction.md, "Repair that runs on while it grows").
+  // (docs/dev-log.md, "Repair that runs on while it grows").
   constexpr int kMaxRoundsFactor = 32;
   int spent = 0, last_size = -1;
   double widen = 1.0;
@@ -424,7 +424,7 @@ void SvmpPlanner::answer(const cspace::Query& query, std::uint64_t seed, const T
     // when they went straight into the eager pass), trees of full size, then the thesis' eager
     // MakeRoadmap (checked edges are kept), once per build. Trees first answered Fig 4.4 and panda_shelf
     // in 0.7x the time, where centring had been wasted on most failing seeds; at half size they cost
-    // little where the centring answers (docs/reproduction.md, eighteenth session). Eager connection
+    // little where the centring answers (docs/dev-log.md, eighteenth session). Eager connection
     // reaches other components beyond the k nearest, and repair's frontiers need the components the
     // roadmap has proven.
     if (round == 0 && options_.lazy && !full_trees_tried) {

@@ -37,7 +37,7 @@ struct SvmpOptions {
   // all, then kSampleBudget / trees, at least kMinSamplesPerTree (resolvedFor). Then the samples, and
   // the training that grows faster than they do, stop growing with the obstacle count: arms among
   // 30-60 small boxes trained for 113-152 ms on 200 a tree, 12-14 ms on 39-77 a tree, at the same
-  // success, with colour classes (docs/reproduction.md, "An arm in clutter"; one model per obstacle
+  // success, with colour classes (docs/dev-log.md, "An arm in clutter"; one model per obstacle
   // has since cut that to 2-4 ms).
   static constexpr int kSamplesPerTree = 200, kSampleBudget = 2400, kMinSamplesPerTree = 20;
   int samples_per_tree = static_cast<int>(kDerived);
@@ -55,7 +55,7 @@ struct SvmpOptions {
   double duplicate_radius = -1;   // milestones closer than this are merged; < 0: step / 2
   // Query repair rounds without progress allowed (0 disables repair); a round that grows the start's
   // or goal's component costs none, up to 32 x repair_rounds rounds in all (fewer stopped runs whose
-  // components were still growing; docs/reproduction.md, "Repair that runs on while it grows").
+  // components were still growing; docs/dev-log.md, "Repair that runs on while it grows").
   int repair_rounds = 5;
   int repair_samples = 100;       // random configurations per repair round
   // When the lazy roadmap did not answer a query, RRT-Connect trees between the start's and the
@@ -65,7 +65,7 @@ struct SvmpOptions {
   // centring is still deferred, trees of half the size come first, then the centring, then these
   // (Fig 4.4 and panda_shelf 0.7x the time; eighteenth session). On the arms the eager pass costs
   // 25k-65k checks where trees join in a few thousand (panda_shelf 1.5x, Fig 4.4 1.1x faster, paths
-  // shorter; docs/reproduction.md, twelfth session), and a repair round 15k-35k where the trees join
+  // shorter; docs/dev-log.md, twelfth session), and a repair round 15k-35k where the trees join
   // a pocket the roadmap does not reach in 1k-2k (panda_shelf, 100 queries: 0.57-0.79x the time;
   // fourteenth session).
   int lazy_trees = 300;
@@ -75,7 +75,7 @@ struct SvmpOptions {
   // which learns the obstacles before it plans. With 300, over 90 bench files (20 seeds) the trees
   // answered most seeds of 41 and single queries took 0.29x the time (geometric mean of medians;
   // 14 files, the narrow passages, 1.1-1.6x), but svmp's numbers would then measure RRT-Connect
-  // wherever it succeeds, not SVMP (docs/reproduction.md, "Trees before the build").
+  // wherever it succeeds, not SVMP (docs/dev-log.md, "Trees before the build").
   int trees_before_build = 0;
   // A repair round whose guided nodes do not join the start's and the goal's components then grows
   // RRT-Connect trees from both (planners/tree_connect.hpp; first, when either holds at most k roadmap
@@ -87,7 +87,7 @@ struct SvmpOptions {
   // Share of the interior (non-boundary) obstacle samples the SVMs train on; every boundary sample
   // is kept. Interior samples far from other classes are rarely support vectors yet cost training
   // time; 0.1 cut panda_shelf's training from 45% to 21% of its time at the same success (Fig 4.4:
-  // 10 -> 15 of 20; docs/reproduction.md), 0-0.1 measured alike.
+  // 10 -> 15 of 20; docs/dev-log.md), 0-0.1 measured alike.
   double interior_fraction = 0.1;
   // An obstacle tree thinner than the step stops after this many expansions a node
   // (planners::ObstacleSamplerOptions::max_expansions_per_node); 0: the thesis' trees, which grow on.
@@ -96,7 +96,7 @@ struct SvmpOptions {
   // With lazy edges, the build's descent ends that collide are centred when a query first fails on
   // the lazy roadmap, and linked lazily, not while building: centring was 2/3 of the milestone phase
   // on Figs 4.4-4.10, whose single queries need none of those nodes; narrow passages (the gap
-  // family) get them at their first query (docs/reproduction.md, "Centring when a query needs it").
+  // family) get them at their first query (docs/dev-log.md, "Centring when a query needs it").
   bool defer_centring = true;
   bool sample_self_collision = true;  // the self-collision region is one more class
   // "rbf": the thesis' RBF on the weighted joints; "fk": the FK kernel of Das & Yip 2019 (eq. 4), the

@@ -1,4 +1,4 @@
-// SVMP's query repair (thesis ch. 3.5, future work; docs/reproduction.md "Repair along the decision
+// SVMP's query repair (thesis ch. 3.5, future work; docs/dev-log.md "Repair along the decision
 // boundary" and "Trees in repair"): each round takes the narrowest pairs of the disconnection,
 // bridges them along the decision boundary, guides random samples around them down to the boundary,
 // and where those do not join the start's and the goal's components grows RRT-Connect trees from both;

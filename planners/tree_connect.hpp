@@ -9,7 +9,7 @@
 // and so gets most of the samples, where a roadmap component in open space would have spent half
 // of them growing where the roadmap already is (Fig 4.10: 9 of 20 goals had no free edge to the
 // roadmap; trees that took turns each sample checked 1.4x as much, panda_shelf 2x;
-// docs/reproduction.md, "Balanced trees"). SVMP's repair
+// docs/dev-log.md, "Balanced trees"). SVMP's repair
 // (planners/svmp_repair.cpp) runs it in a round whose SVM-guided nodes did not join the start's and
 // the goal's components: where the decision boundaries do not lead through a passage, the trees
 // still explore it.

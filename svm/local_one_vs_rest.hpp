@@ -1,7 +1,7 @@
 // One-versus-rest on neighbourhoods, with the bias fixed at -1: each class's problem holds only its
 // own samples and the others' within the RBF's truncation radius of them, so its size is that of
 // the class and its surroundings, not of all samples. A departure from the thesis' C-SVC (ch. 2.1,
-// 3.3), measured in docs/reproduction.md ("One-versus-rest on neighbourhoods").
+// 3.3), measured in docs/dev-log.md ("One-versus-rest on neighbourhoods").
 //
 // Why leaving the far samples out is exact: with the kernel truncated where exp(-gamma d^2) <
 // exp(-5) (the truncation the risk function evaluates with, thesis ch. 4.3.1) and the bias fixed at

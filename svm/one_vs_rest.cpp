@@ -76,7 +76,7 @@ bool shareColumns(const SolverResult& first, Eigen::Index n, int k, const Solver
 // start, with caches of their own, instead of sharing columns without shrinking. forest_200's colour
 // models keep 10% of 673 samples as support vectors; their loops over every sample were most of
 // the training. Where half the samples or more are support vectors (the thesis' arms, panda_shelf),
-// early shrinks are undone by gradient reconstructions (docs/reproduction.md, twelfth session).
+// early shrinks are undone by gradient reconstructions (docs/dev-log.md, twelfth session).
 bool sparseSupport(const SolverResult& first, Eigen::Index n) {
   constexpr double kSparse = 0.25;
   return first.support_vectors < kSparse * static_cast<double>(n);
