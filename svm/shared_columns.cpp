@@ -49,15 +49,24 @@ bool SharedColumns::fits(Eigen::Index n, double size_mb) {
 const float* SharedColumns::column(int s) {
   const int n = samples_.size();
   float* col = data_.get() + static_cast<size_t>(s) * n;
-  unsigned char expected = kEmpty;
-  if (state_[s].compare_exchange_strong(expected, kComputing, std::memory_order_acquire)) {
-    samples_.column(s, 0, n, col);
-    computed_.fetch_add(1, std::memory_order_relaxed);
-    state_[s].store(kReady, std::memory_order_release);
-    return col;
+  // A thread whose computation throws (an allocation) leaves the column empty again, so the threads
+  // waiting for it take it over rather than wait for ever.
+  for (;;) {
+    unsigned char expected = kEmpty;
+    if (state_[s].compare_exchange_strong(expected, kComputing, std::memory_order_acquire)) {
+      try {
+        samples_.column(s, 0, n, col);
+      } catch (...) {
+        state_[s].store(kEmpty, std::memory_order_release);
+        throw;
+      }
+      computed_.fetch_add(1, std::memory_order_relaxed);
+      state_[s].store(kReady, std::memory_order_release);
+      return col;
+    }
+    if (expected == kReady) return col;
+    std::this_thread::yield();
   }
-  while (state_[s].load(std::memory_order_acquire) != kReady) std::this_thread::yield();
-  return col;
 }
 
 bool SharedColumns::matches(const Eigen::MatrixXd& X, const Kernel& kernel) const {

@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <exception>
 #include <vector>
 
 #include "svm/simd_loops.hpp"
@@ -16,20 +17,28 @@
 namespace svmp::svm::parallel {
 
 // f(begin, end, chunk) for the chunks of [0, m); serial (one chunk) below min_size or with 1
-// thread.
+// thread. An exception thrown in a chunk (a kernel column's allocation) is rethrown after the
+// region, the lowest chunk's first: one leaving an OpenMP region ends the program.
 template <class F>
 void forChunks(int m, int threads, int min_size, F&& f) {
   if (threads <= 1 || m < min_size) {
     f(0, m, 0);
     return;
   }
+  std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), count = omp_get_num_threads();
     const int chunk = ((m + count - 1) / count + 7) / 8 * 8;
     const int begin = std::min(m, t * chunk), end = std::min(m, begin + chunk);
-    f(begin, end, t);
+    try {
+      f(begin, end, t);
+    } catch (...) {
+      errors[static_cast<size_t>(t)] = std::current_exception();
+    }
   }
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
 }
 
 // Partial results of chunks (indices relative to the chunk; chunk 0 starts at 0) merged into one;

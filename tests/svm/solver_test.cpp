@@ -6,6 +6,7 @@
 #include <string>
 
 #include "svm/model.hpp"
+#include "svm/smo_parallel.hpp"
 #include "svm/smo_solver.hpp"
 #include "tests/svm/ball_problems.hpp"
 #include "tests/svm/test_helpers.hpp"
@@ -144,6 +145,24 @@ TEST(Solver, ThreadsGiveTheSameSolution) {
   EXPECT_EQ(again.alpha, b.alpha);
   two.threads = 0;
   EXPECT_THROW(solveBinary(p.X, y, C, k, two), std::invalid_argument);
+}
+
+// An exception in one chunk of a parallel loop reaches the caller (the lowest chunk's first); one
+// leaving the OpenMP region would end the program.
+TEST(Solver, AChunkThatThrowsReachesTheCaller) {
+  const auto throwIn = [](int which) {
+    return [which](int, int, int chunk) {
+      if (which < 0 || chunk == which) throw std::runtime_error("chunk " + std::to_string(chunk));
+    };
+  };
+  EXPECT_THROW(parallel::forChunks(64, 2, 8, throwIn(1)), std::runtime_error);
+  try {
+    parallel::forChunks(64, 2, 8, throwIn(-1));
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "chunk 0");
+  }
+  EXPECT_NO_THROW(parallel::forChunks(64, 2, 8, throwIn(5)));
 }
 
 // A time limit's hook: polled every 1,000 iterations, it ends the solve with the iterate reached.
