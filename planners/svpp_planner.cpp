@@ -150,6 +150,12 @@ svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, 
 
 SVMP_REGISTER_PLANNER("svpp",
                       [](const PlanningContext& context, const cspace::ParameterSet& params) {
+                        // Only the 2-D following searches an arc; a value that changes nothing is
+                        // refused rather than taken silently.
+                        if (context.space.dim() == 3 && params.has("search_angle_deg"))
+                          throw cspace::ScenarioError(params.describe("search_angle_deg") +
+                                                      ": applies in 2-D only; in 3-D the path follows a plane "
+                                                      "fitted to the surface (Miura sec. IV-B-4)");
                         const SvppOptions o =
                             SvppOptions::fromParameters(params).resolvedFor(
                                 context.space, context.checker.environment().numReal());

@@ -248,6 +248,16 @@ TEST(SvppTest, BadParametersAndRobotsAreRejected) {
             std::string::npos);
   EXPECT_NE(message("step", "1e-5").find("step (1e-05) is below 1/10000 of the space's diagonal"), std::string::npos);
   EXPECT_EQ(message("step", "3e-4"), "accepted");
+  // theta_s steers only the 2-D arc search: in 3-D it would be taken and change nothing.
+  const CertifiedWorld w3(scenarioText("svpp_3d10_01.yaml"));
+  cspace::ParameterSet angle("test.yaml", "planners.svpp.", {{"search_angle_deg", "90"}});
+  try {
+    w3.planner(angle);
+    ADD_FAILURE() << "search_angle_deg accepted in 3-D";
+  } catch (const cspace::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("field 'planners.svpp.search_angle_deg': applies in 2-D only"),
+              std::string::npos) << e.what();
+  }
 
   const auto arm = test::makeWorld(
       "robot: {type: planar_arm, lengths: [1, 1], widths: 0.05}\n"
