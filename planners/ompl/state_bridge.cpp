@@ -76,12 +76,28 @@ bool ContextMotionValidator::checkMotion(const ob::State* s1, const ob::State* s
   return false;
 }
 
+namespace {
+
+// OMPL's informed samplers (Informed RRT*'s PathLengthDirectInfSampler) draw through the space's
+// *default* sampler, which RealVectorStateSpace seeds from OMPL's process-wide generator, so
+// ompl-informedrrtstar's runs differed for a seed. Here the default is the allocator's too; no other
+// OMPL planner asks for it.
+class SeededDefaultSpace final : public ob::RealVectorStateSpace {
+ public:
+  using ob::RealVectorStateSpace::RealVectorStateSpace;
+  ob::StateSamplerPtr allocDefaultStateSampler() const override {
+    return ssa_ ? ssa_(this) : ob::RealVectorStateSpace::allocDefaultStateSampler();
+  }
+};
+
+}  // namespace
+
 ob::SpaceInformationPtr makeSpaceInformation(const planners::PlanningContext& context,
                                              std::shared_ptr<const void> owner,
                                              const ob::StateSamplerAllocator& sampler) {
   const Eigen::VectorXd& scale = context.space.metricScale();
   const int dim = context.space.dim();
-  auto space = std::make_shared<ob::RealVectorStateSpace>(dim);
+  auto space = std::make_shared<SeededDefaultSpace>(dim);
   ob::RealVectorBounds bounds(dim);
   for (int i = 0; i < dim; ++i) {
     bounds.setLow(i, context.space.lower()[i] * scale[i]);

@@ -2,8 +2,7 @@
 """ctest sweep_equals_single_run: a 4-shard sweep run by GNU parallel and merged gives the single run.
 
 One svmp-plan run over seeds S..S+N-1 and `scripts/sweep` over the same seeds in 4 shards per planner
-(the planners whose runs repeat for a seed: svmp, prm and every OMPL planner but ompl-prm and
-ompl-informedrrtstar): the
+(the planners whose runs repeat for a seed: svmp, prm and every OMPL planner but ompl-prm): the
 merged JSON has the same per-run records and the same aggregates, and the merged table the same rows,
 apart from wall-clock times. A rerun skips finished shards and reruns a missing or truncated one; svmp-plan --merge refuses seeds
 missing or repeated, different parameter values, and shards whose --seed trained different proxies.
@@ -18,9 +17,9 @@ import sys
 SOURCE, DRIVER, WORK = sys.argv[1:4]
 SWEEP = os.path.join(SOURCE, "scripts", "sweep")
 SCENARIO = os.path.join(SOURCE, "bench", "scenarios", "thesis_fig3_5.yaml")
-# The planners whose runs repeat exactly for a seed (ompl-prm grows by wall time, ompl-informedrrtstar's
-# informed sampler draws from OMPL's own generator; docs/architecture.md "Determinism").
-PLANNERS, SEED, RUNS = "svmp,prm,ompl-rrtconnect,ompl-lazyprm,ompl-fmt,ompl-rrt,ompl-sbl,ompl-rrtstar", 3, 10
+# The planners whose runs repeat exactly for a seed (ompl-prm grows by wall time; docs/architecture.md
+# "Determinism").
+PLANNERS, SEED, RUNS = "svmp,prm,ompl-rrtconnect,ompl-lazyprm,ompl-fmt,ompl-rrt,ompl-sbl,ompl-rrtstar,ompl-informedrrtstar", 3, 10
 SHARDS = 4 * len(PLANNERS.split(","))
 TIME_FIELDS = {"time_ms", "build_ms", "query_ms", "simplify_ms", "phase_ms", "started"}
 failures = []
