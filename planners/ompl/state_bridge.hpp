@@ -71,11 +71,10 @@ class ContextMotionValidator final : public ob::MotionValidator {
 };
 
 // A RealVectorStateSpace on scaled coordinates within the space's bounds, with the context's checker
-// and validator (and `sampler`, when given, also as the default sampler that informed samplers draw
-// through) installed, set up. The default projection is on the first
-// two coordinates (all of them in 1-D and 2-D): OMPL 1.5's identity projection resizes an Eigen::Ref
-// and aborts in Debian's build, and its random projection beyond 2-D does not follow the run's seed
-// (SBL, KPIECE).
+// and validator (and `sampler`, when given, also as the default sampler informed samplers draw
+// through) installed, set up. The default projection is on the first two coordinates (all of them
+// in 1-D and 2-D): OMPL 1.5's identity projection resizes an Eigen::Ref and aborts in Debian's
+// build, and its random projection beyond 2-D does not follow the run's seed (SBL, KPIECE).
 ob::SpaceInformationPtr makeSpaceInformation(const planners::PlanningContext& context,
                                              std::shared_ptr<const void> owner = {},
                                              const ob::StateSamplerAllocator& sampler = {});
