@@ -3,7 +3,7 @@
 // boxes (Ericson, *Real-Time Collision Detection*, 7.1). Each cell lists the boxes that meet it, so
 // a query box visits a few cells and tests a few boxes. It replaced FCL's dynamic AABB tree, whose
 // traversal (calls into FCL's shared library per node) was a quarter of an arm's run among 60 small
-// boxes (docs/reproduction.md).
+// boxes (docs/benchmarks.md, "The broadphase grid").
 //
 // A box met by several query cells is reported once: in the cell at the low corner of the overlap of
 // its cell range with the query's.

@@ -14,7 +14,8 @@
 // run's seed, but OMPL's PRM interleaves growth and expansion by wall time and checks for solutions in
 // a second thread, so it is not exactly repeatable. Informed RRT* repeats up to its first solution
 // (its sampler draws through the space's default sampler, ours: state_bridge.cpp), so stopped there
-// it takes RRT*'s runs; its informed draws after one come from OMPL's per-process generator.
+// it takes RRT*'s checks and path (its tree pruned at that solution); its informed draws after one
+// come from OMPL's per-process generator.
 // The planners register themselves as ompl-prm, ompl-lazyprm, ompl-rrtconnect, ompl-rrt, ompl-sbl,
 // ompl-rrtstar, ompl-fmt and ompl-informedrrtstar (planners/planner_registry.hpp); nothing else is
 // exported. The state space, checker and validator are planners/ompl/state_bridge.hpp's.

@@ -30,6 +30,13 @@ SvppOptions SvppOptions::fromParameters(const cspace::ParameterSet& params) {
   return o;
 }
 
+void SvppOptions::requireKeysFor(const cspace::ParameterSet& params, int dim) {
+  if (dim != 2 && params.has("search_angle_deg"))
+    throw cspace::ScenarioError(params.describe("search_angle_deg") +
+                                ": applies in 2-D only; in 3-D the path follows a plane fitted to the surface "
+                                "(Miura sec. IV-B-4)");
+}
+
 std::string SvppOptions::validate() const {
   auto positiveOrDerived = [](double v) { return v == kDerived || (v > 0 && std::isfinite(v)); };
   std::ostringstream why;
@@ -150,12 +157,7 @@ svm::BinaryModel trainSvppModel(const TrainingSet& set, double gamma, double C, 
 
 SVMP_REGISTER_PLANNER("svpp",
                       [](const PlanningContext& context, const cspace::ParameterSet& params) {
-                        // Only the 2-D following searches an arc; a value that changes nothing is
-                        // refused rather than taken silently.
-                        if (context.space.dim() == 3 && params.has("search_angle_deg"))
-                          throw cspace::ScenarioError(params.describe("search_angle_deg") +
-                                                      ": applies in 2-D only; in 3-D the path follows a plane "
-                                                      "fitted to the surface (Miura sec. IV-B-4)");
+                        SvppOptions::requireKeysFor(params, context.space.dim());
                         const SvppOptions o =
                             SvppOptions::fromParameters(params).resolvedFor(
                                 context.space, context.checker.environment().numReal());

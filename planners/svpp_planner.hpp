@@ -61,6 +61,9 @@ struct SvppOptions {
   double eps = 1e-3;  // SMO stopping tolerance (SVM^light's default)
 
   static SvppOptions fromParameters(const cspace::ParameterSet& params);
+  // Throws cspace::ScenarioError naming the field when `params` set a key the `dim`-D method never
+  // reads (search_angle_deg beyond 2-D), rather than take a value that changes nothing.
+  static void requireKeysFor(const cspace::ParameterSet& params, int dim);
   std::string validate() const;  // "" when usable
   // validate(), and the resolved lengths bounded in `space`: at most kMaxStepsPerDiagonal steps
   // across its diagonal (the paper's step makes 57), kMaxGuideSamples guide samples (a bound over

@@ -10,7 +10,7 @@
 // thread count or the order the solves ran in. Memory: up to n^2 floats, taken as columns are
 // first used; fits() keeps that within a column cache's budget.
 // Thread safety: column() may be called concurrently; a thread asking for a column another thread
-// is computing waits for it (about a microsecond).
+// is computing waits for it (about a microsecond), and computes it itself if that one threw.
 #pragma once
 
 #include <Eigen/Core>

@@ -25,7 +25,8 @@ void forChunks(int m, int threads, int min_size, F&& f) {
     f(0, m, 0);
     return;
   }
-  std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
+  std::exception_ptr error;  // the lowest failing chunk's (nothing allocated when none fails)
+  int error_chunk = threads;
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), count = omp_get_num_threads();
@@ -34,11 +35,14 @@ void forChunks(int m, int threads, int min_size, F&& f) {
     try {
       f(begin, end, t);
     } catch (...) {
-      errors[static_cast<size_t>(t)] = std::current_exception();
+#pragma omp critical(svmp_for_chunks_error)
+      if (t < error_chunk) {
+        error_chunk = t;
+        error = std::current_exception();
+      }
     }
   }
-  for (const std::exception_ptr& error : errors)
-    if (error) std::rethrow_exception(error);
+  if (error) std::rethrow_exception(error);
 }
 
 // Partial results of chunks (indices relative to the chunk; chunk 0 starts at 0) merged into one;

@@ -81,6 +81,7 @@ planners::SvppOptions svmSmoothingOptions(const cspace::Scenario& scenario, cons
   const auto svpp = planners::SvppOptions::fromParameters(params);
   params.requireAllUsed();
   const cspace::ConfigurationSpace space = scenario.makeSpace();
+  planners::SvppOptions::requireKeysFor(params, space.dim());
   if (const std::string why = svpp.resolvedFor(space, scenario.environment->numReal()).validateFor(space); !why.empty())
     throw cspace::ScenarioError(scenario.path + ": --simplify svpp: svpp parameters: " + why);
   if (!dynamic_cast<const robots::PointRobot*>(scenario.robot.get()))

@@ -1,11 +1,11 @@
 #include "planners/ompl/state_bridge.hpp"
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include <ompl/base/spaces/RealVectorStateProjections.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
-
-#include <vector>
 
 namespace svmp::ompl_planners {
 
@@ -80,14 +80,17 @@ namespace {
 
 // OMPL's informed samplers (Informed RRT*'s PathLengthDirectInfSampler) draw through the space's
 // *default* sampler, which RealVectorStateSpace seeds from OMPL's process-wide generator, so
-// ompl-informedrrtstar's runs differed for a seed. Here the default is the allocator's too; no other
-// OMPL planner asks for it.
+// ompl-informedrrtstar's runs differed for a seed. Here the default is the bridge's seeded sampler
+// too (kept apart from the allocator a user may set later); no other planner the bridge builds asks
+// for the default one.
 class SeededDefaultSpace final : public ob::RealVectorStateSpace {
  public:
-  using ob::RealVectorStateSpace::RealVectorStateSpace;
-  ob::StateSamplerPtr allocDefaultStateSampler() const override {
-    return ssa_ ? ssa_(this) : ob::RealVectorStateSpace::allocDefaultStateSampler();
-  }
+  SeededDefaultSpace(unsigned int dim, ob::StateSamplerAllocator sampler)
+      : ob::RealVectorStateSpace(dim), sampler_(std::move(sampler)) {}
+  ob::StateSamplerPtr allocDefaultStateSampler() const override { return sampler_(this); }
+
+ private:
+  ob::StateSamplerAllocator sampler_;
 };
 
 }  // namespace
@@ -97,7 +100,8 @@ ob::SpaceInformationPtr makeSpaceInformation(const planners::PlanningContext& co
                                              const ob::StateSamplerAllocator& sampler) {
   const Eigen::VectorXd& scale = context.space.metricScale();
   const int dim = context.space.dim();
-  auto space = std::make_shared<SeededDefaultSpace>(dim);
+  const auto space = sampler ? std::make_shared<SeededDefaultSpace>(dim, sampler)
+                             : std::make_shared<ob::RealVectorStateSpace>(dim);
   ob::RealVectorBounds bounds(dim);
   for (int i = 0; i < dim; ++i) {
     bounds.setLow(i, context.space.lower()[i] * scale[i]);

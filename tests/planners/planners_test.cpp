@@ -175,6 +175,23 @@ TEST(Determinism, OmplSblSameSeedSameResultBeyondTwoDimensions) {
     expectSameResult(a, b);
   }
 }
+
+// Informed RRT*'s sampler draws through the space's default sampler, ours: its runs repeat for a
+// seed, and stopped at the first solution (before any informed draw) it checks what RRT* checks and
+// returns its path (differing on the old code: 13,738, 7,163 and 65,396 checks for one seed).
+TEST(Determinism, OmplInformedRrtStarRepeatsAndSamplesAsRrtStarUntilItsFirstSolution) {
+  auto w1 = makeWorld(test::readScenario("fastron_panda.yaml"));
+  auto w2 = makeWorld(test::readScenario("fastron_panda.yaml"));
+  for (std::uint64_t seed : {1, 3}) {
+    const PlanResult a = w1->planner("ompl-informedrrtstar")->solve(w1->query(), seed);
+    const PlanResult b = w2->planner("ompl-informedrrtstar")->solve(w2->query(), seed);
+    const PlanResult star = w2->planner("ompl-rrtstar")->solve(w2->query(), seed);
+    ASSERT_TRUE(a.solved()) << a.message;
+    expectSameResult(a, b);
+    EXPECT_EQ(a.collision_checks, star.collision_checks);
+    EXPECT_EQ(a.path, star.path);
+  }
+}
 #endif
 
 // Start or goal in collision: a status, not a crash.
