@@ -200,6 +200,24 @@ TEST(DriverOutput, APathTheSvmSmoothingKeepsSaysSoInItsRecord) {
   EXPECT_EQ(log.str().find("warning: --simplify svpp"), std::string::npos) << "said twice:\n" << log.str();
 }
 
+// svpp's search angle steers the 2-D following only: a 3-D scene refuses it under --simplify svpp
+// too, naming the field, as `--planners svpp` does.
+TEST(DriverOutput, SvmSmoothingRefusesTheSearchAngleIn3d) {
+  const std::string path = std::string(SVMP_SOURCE_DIR) + "/bench/scenarios/svpp_3d10_01.yaml";
+  DriverOptions options;
+  options.planners = {"ompl-rrtconnect"};
+  options.simplify = options.simplify_svm = true;
+  options.overrides = {{"svpp.search_angle_deg", "90"}};
+  std::ostringstream log;
+  try {
+    runExperiment(cspace::loadScenario(path), options, log);
+    ADD_FAILURE() << "search_angle_deg taken in 3-D";
+  } catch (const cspace::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("'planners.svpp.search_angle_deg': applies in 2-D only"), std::string::npos)
+        << e.what();
+  }
+}
+
 // A path with no obstacle in the scene has an infinite clearance, which JSON cannot hold: the record
 // says "inf", the summary null, the table inf, and --merge reads the record back as infinite (it had
 // read null as NaN; before that the file had held a bare inf and -nan, which no parser took).
