@@ -197,6 +197,7 @@ int main(int argc, char** argv) {
   }
   ompl::RNG::setSeed(flags.seed);  // before any OMPL generator exists, or it is ignored
   try {
+    experiments::checkDistinct({{"--scenario", flags.scenario}, {"--log", flags.log}}, {});
     experiments::checkWritable("--log", flags.log);
     cspace::Scenario scenario = cspace::loadScenario(flags.scenario);
     experiments::requireValidConfigurations(scenario);

@@ -107,11 +107,22 @@ RunRecord recordFromJson(const json& j, const std::string& where) {
   r.smoothness = get<double>(j, "smoothness", where);
   r.simplify_ms = get<double>(j, "simplify_ms", where);
   r.min_clearance = clearanceOf(j, where);
-  // What svmp-plan never writes: a solved path it did not certify, a negative time.
+  // What svmp-plan never writes: a solved path it did not certify, a negative or endless time (1e12
+  // ms is 31 years; beyond, a sum of them overflows to inf), a negative length or clearance (null,
+  // read as NaN, is an unsolved run's).
   if (p.status == planners::PlanStatus::kSolved && !p.certified)
     throw std::runtime_error(where + ": status 'solved' but not certified (svmp-plan counts only certified paths)");
-  for (const auto& [name, ms] : {std::pair{"time_ms", r.time_ms}, {"build_ms", r.build_ms}, {"simplify_ms", r.simplify_ms}})
-    if (ms < 0) throw std::runtime_error(where + ": field '" + name + "' is negative: " + std::to_string(ms));
+  for (const auto& [name, ms] :
+       {std::pair{"time_ms", r.time_ms}, {"build_ms", r.build_ms}, {"simplify_ms", r.simplify_ms},
+        {"phase_ms.sampling", p.times.sampling_ms}, {"phase_ms.training", p.times.training_ms},
+        {"phase_ms.milestones", p.times.milestones_ms}, {"phase_ms.roadmap", p.times.roadmap_ms},
+        {"phase_ms.query", p.times.query_ms}, {"phase_ms.certify", p.times.certify_ms}})
+    if (!(ms >= 0 && ms <= 1e12))
+      throw std::runtime_error(where + ": field '" + name + "' must be a time in [0, 1e12] ms, got " + std::to_string(ms));
+  for (const auto& [name, v] : {std::pair{"path_length", r.path_length}, {"raw_length", r.raw_length},
+                                {"min_clearance", r.min_clearance}, {"smoothness", r.smoothness}})
+    if (v < 0 || (std::isinf(v) && (name == std::string("path_length") || name == std::string("raw_length"))))
+      throw std::runtime_error(where + ": field '" + name + "' must be null or a number >= 0, got " + std::to_string(v));
   return r;
 }
 

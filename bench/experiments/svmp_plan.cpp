@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     if (!options.merge_files.empty()) {
       if (!options.json_path.empty()) experiments::checkWritable("--json", options.json_path);
       for (const auto& shard : options.merge_files)  // a shard given twice is the merge's to refuse
-        experiments::checkDistinct({{"--merge", shard}, {"--json", options.json_path}});
+        experiments::checkDistinct({{"--merge", shard}, {"--scenario", options.scenario}, {"--json", options.json_path}});
       const auto merged = experiments::mergeShards(options.merge_files, options.scenario);
       experiments::printTable(merged.scenario, merged.options, merged.results, std::cout);
       if (!options.json_path.empty())

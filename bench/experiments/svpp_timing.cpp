@@ -70,6 +70,11 @@ int main(int argc, char** argv) {
       }
       // svpp.KEY as svmp-plan spells it, or KEY alone: both name svpp's key.
       const std::string key = kv.rfind("svpp.", 0) == 0 ? kv.substr(5, eq - 5) : kv.substr(0, eq);
+      for (const auto& [given, was] : overrides)
+        if (given == key) {  // as svmp-plan: the last value would silently win
+          std::cerr << "svpp-timing: --set " << kv << ": " << key << " is already set to '" << was << "'\n";
+          return 2;
+        }
       overrides.emplace_back(key, kv.substr(eq + 1));
     } else if (arg == "--help" || arg == "-h") {
       std::cout << kUsage;

@@ -3,6 +3,7 @@
 // Input: "n d gamma eps", then n lines "x_1 .. x_d y C". Output: objective, bias, then alpha_i one a line.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -11,13 +12,18 @@
 #include "svm/smo_solver.hpp"
 
 int main(int argc, char** argv) {
+  const char* usage = "usage: svmp-solve-reference SAMPLES.txt  (\"n d gamma eps\", then n lines \"x_1 .. x_d y C\")\n";
+  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::cout << usage;
+    return 0;
+  }
   if (argc != 2) {
-    std::cerr << "usage: svmp-solve-reference SAMPLES.txt\n";
+    std::cerr << usage;
     return 2;
   }
   std::ifstream in(argv[1]);
-  if (!in) {
-    std::cerr << argv[1] << ": cannot open\n";
+  if (!in || std::filesystem::is_directory(argv[1])) {
+    std::cerr << argv[1] << ": cannot open" << (in ? ": it is a directory" : "") << "\n";
     return 2;
   }
   // Read line by line, so a short or long line is named rather than shifting the rest of the file;
@@ -27,9 +33,11 @@ int main(int argc, char** argv) {
   long n = 0, d = 0;
   double gamma = 0, eps = 0;
   std::getline(in, line);
-  if (std::istringstream header(line); !(header >> n >> d >> gamma >> eps) || n <= 0 || d <= 0 || n > 1000000 ||
-                                         d > 1000000 / n) {
-    std::cerr << argv[1] << ": line 1: bad header '" << line << "' (expected n d gamma eps, n x d at most 1e6)\n";
+  std::string extra;
+  if (std::istringstream header(line); !(header >> n >> d >> gamma >> eps) || header >> extra || n <= 0 || d <= 0 ||
+                                         n > 1000000 || d > 1000000 / n || !(eps > 0 && eps <= 1)) {
+    std::cerr << argv[1] << ": line 1: bad header '" << line
+              << "' (expected n d gamma eps, n x d at most 1e6, eps in (0, 1])\n";
     return 2;
   }
   Eigen::MatrixXd X(d, n);
@@ -42,7 +50,6 @@ int main(int argc, char** argv) {
     std::istringstream values(line);
     for (long k = 0; k < d; ++k) values >> X(k, i);
     values >> y[i] >> C[i];
-    std::string extra;
     if (!values || values >> extra || !X.col(i).allFinite() || !std::isfinite(y[i]) || !std::isfinite(C[i])) {
       std::cerr << argv[1] << ": line " << i + 2 << ": expected " << d << " finite coordinates, y and C, got '"
                 << line << "'\n";

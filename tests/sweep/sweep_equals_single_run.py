@@ -136,6 +136,18 @@ err = run(DRIVER, "--merge", *svmp_shards, *prm_shards[:-1], expect=2).stderr
 check("covers seeds 3..10" in err, f"planners over different seeds are refused: {err}")
 err = run(DRIVER, "--merge", *svmp_shards, svmp_shards[0], expect=2).stderr
 check("appears in two shards" in err, f"a repeated shard is refused: {err}")
+# Values svmp-plan never writes (a probe's edits): a negative length or clearance, an endless time.
+for field, value, said in (("path_length", -5, "'path_length' must be null or a number >= 0"),
+                           ("min_clearance", -1, "'min_clearance' must be null or a number >= 0"),
+                           ("time_ms", 1e308, "'time_ms' must be a time in [0, 1e12] ms")):
+    with open(svmp_shards[0]) as f:
+        edited = json.load(f)
+    edited["results"][0]["records"][0][field] = value
+    bad = os.path.join(WORK, f"bad_{field}.json")
+    with open(bad, "w") as f:
+        json.dump(edited, f)
+    err = run(DRIVER, "--merge", bad, *svmp_shards[1:], expect=2).stderr
+    check(said in err, f"a record with {field} = {value} is refused: {err}")
 other = os.path.join(WORK, "sigma.json")
 run(DRIVER, "--scenario", SCENARIO, "--planners", "svmp", "--seed", "100", "--runs", "1", "--set", "svmp.sigma=0.9",
     "--json", other)

@@ -94,7 +94,10 @@ Flags parse(int argc, char** argv) {
       const std::string checker = v.substr(0, dot);
       if (!f.params.count(checker))
         throw cspace::ScenarioError("flag --set " + v + ": unknown checker '" + checker + "' (fastron-fk, fastron-rbf)");
-      f.params[checker].set(v.substr(dot + 1, eq - dot - 1), v.substr(eq + 1), "flag --set " + v);
+      const std::string key = v.substr(dot + 1, eq - dot - 1);
+      if (f.params[checker].has(key))  // only flags fill these: the last value would silently win
+        throw cspace::ScenarioError("flag --set " + v + ": " + checker + "." + key + " is already set");
+      f.params[checker].set(key, v.substr(eq + 1), "flag --set " + v);
     } else {
       throw cspace::ScenarioError("unknown flag " + flag);
     }
@@ -118,6 +121,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   try {
+    experiments::checkDistinct({{"--scenario", flags.scenario}, {"--json", flags.json}}, {{"--svg", flags.svg}});
     const cspace::Scenario scenario = cspace::loadScenario(flags.scenario);
     // The scenario's fastron-fk / fastron-rbf sections, then --set over them (as svmp-plan --checker).
     std::map<std::string, cspace::ParameterSet> params;
