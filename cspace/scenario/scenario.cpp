@@ -292,6 +292,8 @@ std::vector<Obstacle> readObstacles(const Reader& r, const YAML::Node& list, con
 void readWitness(const Reader& r, const YAML::Node& n, const std::string& f, const robots::Robot& robot, Query& q) {
   if (!n) return;
   r.requireList(n, f, L::kMaxWitnessWaypoints, "configurations (waypoints)");
+  // An empty list would read as no witness, and --check would pass a straight motion it never tried.
+  if (n.size() == 0) r.fail(f, "an empty list: leave the witness out, or give the waypoints between start and goal");
   q.witness.reserve(n.size());
   for (size_t i = 0; i < n.size(); ++i) q.witness.push_back(readConfiguration(r, n[i], idx(f, i), robot));
 }

@@ -129,6 +129,7 @@ TEST(ScenarioTest, MalformedInputsNameFieldAndValue) {
                    {"start", "joint 2 10.0000000001 not in [0, 10]"});
   expectErrorNames(pointScenarioWith("witness: [[2.5, 6.15], [7.5, 6.15]]", "witness: [[2.5, 6.15], [-1, 6.15]]"),
                    {"witness[1]", "-1"});
+  expectErrorNames(pointScenarioWith("witness: [[2.5, 6.15], [7.5, 6.15]]", "witness: []"), {"witness", "an empty list"});
   expectErrorNames(pointScenarioWith("resolution: 0.05", "resolution: 0.05\nresolutoin: 0.1"), {"resolutoin", "unknown field"});
   expectErrorNames(pointScenarioWith("start: [1, 5]", "start: [1, 5"), {"YAML syntax error"});
   expectErrorNames(pointScenarioWith("metric_weights: [1, 2]", "metric_weights: [1, 0]"), {"metric_weights[1]", "0"});
