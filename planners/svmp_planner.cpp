@@ -17,8 +17,7 @@
 namespace svmp::planners {
 
 namespace {
-// One tree per real obstacle not inside another (`inner`, Environment::innerObstacles), and one in
-// the self-collision region when it is sampled.
+// SvmpPlanner::obstacleTrees, before options_ is resolved (`inner`: Environment::innerObstacles).
 int obstacleTrees(const PlanningContext& context, const SvmpOptions& options, const std::vector<char>& inner) {
   return context.checker.environment().numReal() - static_cast<int>(std::count(inner.begin(), inner.end(), 1)) +
          (options.sample_self_collision && context.checker.checksSelfCollision() ? 1 : 0);
@@ -27,15 +26,15 @@ int obstacleTrees(const PlanningContext& context, const SvmpOptions& options, co
 
 SVMP_REGISTER_PLANNER("svmp", [](const PlanningContext& context, const cspace::ParameterSet& params) {
   const SvmpOptions o = SvmpOptions::fromParameters(params);
+  auto planner = std::make_unique<SvmpPlanner>(context, o);  // holds nothing yet: samples come at build
   // Every sample is an SVM training point.
   constexpr long kMaxSamples = 2000000;
-  const cspace::Environment& env = context.checker.environment();
-  const long trees = obstacleTrees(context, o, env.innerObstacles(env.nestedGroups()));
+  const long trees = planner->obstacleTrees();
   if (static_cast<long>(o.samples_per_tree) * trees > kMaxSamples)
     throw cspace::ScenarioError("planners.svmp.samples_per_tree: " + std::to_string(o.samples_per_tree) + " x " +
                                 std::to_string(trees) + " trees exceeds " + std::to_string(kMaxSamples) +
                                 " obstacle samples");
-  return std::make_unique<SvmpPlanner>(context, o);
+  return planner;
 });
 
 namespace {
@@ -68,7 +67,7 @@ SvmpPlanner::SvmpPlanner(const PlanningContext& context, SvmpOptions options)
     : Planner(context),
       obstacle_group_(context.checker.environment().nestedGroups()),
       inner_obstacles_(context.checker.environment().innerObstacles(obstacle_group_)),
-      options_(options.resolvedFor(context.space, obstacleTrees(context, options, inner_obstacles_))) {
+      options_(options.resolvedFor(context.space, planners::obstacleTrees(context, options, inner_obstacles_))) {
   if (const std::string err = options.validate(); !err.empty()) throw std::invalid_argument("svmp: " + err);
   if (options_.duplicate_radius < 0) options_.duplicate_radius = 0.5 * options_.step;
 }
@@ -92,6 +91,8 @@ int SvmpPlanner::supportVectors() const {
   for (int k = 0; k < risk_->numClasses(); ++k) n += risk_->model(k).numSupportVectors();
   return n;
 }
+
+int SvmpPlanner::obstacleTrees() const { return planners::obstacleTrees(context_, options_, inner_obstacles_); }
 
 PlannerView SvmpPlanner::view() const { return {&samples_, risk(), &roadmap_}; }
 

@@ -137,6 +137,9 @@ class SvmpPlanner final : public Planner {
   PlannerView view() const override;
   std::map<std::string, std::string> derivedParameters() const override;
   double fkSigma() const;  // fk_sigma, or its default from the robot's reach
+  // The trees the obstacle sampling grows: one per real obstacle not inside another, and one in the
+  // self-collision region when it is sampled.
+  int obstacleTrees() const;
 
   // The steps of build(), callable one by one; each adds its time to `times`. Out of order they throw
   // std::logic_error. sampleObstacle returns false when `stop` ended it; trainMultiSvm returns "" or
